@@ -1,0 +1,95 @@
+#include "CLI/OutputTransaction.h"
+
+#include "Core/Error.h"
+
+#include <chrono>
+#include <filesystem>
+#include <system_error>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace colonmap::cli {
+namespace {
+
+// Extension as the writers see it, keeping double extensions such as ".mrk.json" or ".nii.gz".
+std::string FullExtension(const std::string& filename) {
+  const std::string name = fs::path(filename).filename().string();
+  for (const char* two : {".mrk.json", ".nii.gz"}) {
+    const std::string e(two);
+    if (name.size() > e.size() && name.compare(name.size() - e.size(), e.size(), e) == 0) return e;
+  }
+  return fs::path(name).extension().string();
+}
+
+}  // namespace
+
+OutputTransaction::OutputTransaction() {
+  const auto ticks = std::chrono::steady_clock::now().time_since_epoch().count();
+  tag_ = std::to_string(::getpid()) + "-" + std::to_string(ticks % 1000000007);
+}
+
+OutputTransaction::~OutputTransaction() {
+  if (!committed_) Rollback();
+}
+
+void OutputTransaction::PrepareDirectory(const std::string& directory, const std::string& what) {
+  if (directory.empty()) throw Error(what + ": no folder given");
+  std::error_code ec;
+  fs::path dir(directory);
+  if (fs::exists(dir, ec)) {
+    if (!fs::is_directory(dir, ec)) throw InputError(what, directory, "exists and is not a folder");
+  } else {
+    // Remember each level we create so that a rollback removes exactly those.
+    std::vector<fs::path> missing;
+    for (fs::path p = dir; !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
+      missing.push_back(p);
+      if (p == p.parent_path()) break;
+    }
+    if (!fs::create_directories(dir, ec) && ec)
+      throw InputError(what, directory, "cannot create folder (" + ec.message() + ")");
+    for (const auto& p : missing) createdDirectories_.push_back(p.string());
+  }
+  if (::access(dir.c_str(), W_OK) != 0) throw InputError(what, directory, "folder is not writable");
+}
+
+std::string OutputTransaction::Stage(const std::string& finalPath, const std::string& what) {
+  if (finalPath.empty()) throw Error(what + ": no output file given");
+  fs::path final(finalPath);
+  fs::path dir = final.parent_path();
+  if (dir.empty()) dir = ".";
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) throw InputError(what, finalPath, "its folder does not exist");
+  if (::access(dir.c_str(), W_OK) != 0) throw InputError(what, finalPath, "its folder is not writable");
+  if (fs::is_directory(final, ec)) throw InputError(what, finalPath, "is a folder, not a file");
+  const std::string temp = (dir / (".colonmap-tmp-" + tag_ + "-" + std::to_string(counter_++) +
+                                   FullExtension(finalPath))).string();
+  temps_.push_back(temp);
+  finals_.push_back(finalPath);
+  return temp;
+}
+
+void OutputTransaction::Commit() {
+  for (std::size_t i = 0; i < temps_.size(); ++i) {
+    std::error_code ec;
+    if (!fs::exists(temps_[i], ec)) throw Error("output '" + finals_[i] + "' was not written");
+  }
+  for (std::size_t i = 0; i < temps_.size(); ++i) {
+    std::error_code ec;
+    fs::rename(temps_[i], finals_[i], ec);
+    if (ec) throw Error("output '" + finals_[i] + "': cannot rename into place (" + ec.message() + ")");
+  }
+  committed_ = true;
+}
+
+void OutputTransaction::Rollback() {
+  std::error_code ec;
+  for (const auto& t : temps_) fs::remove(t, ec);
+  // Deepest first; only if empty, so that we never remove what someone else put there.
+  for (const auto& d : createdDirectories_) fs::remove(d, ec);
+  temps_.clear();
+  finals_.clear();
+  createdDirectories_.clear();
+}
+
+}  // namespace colonmap::cli

@@ -1,0 +1,61 @@
+#pragma once
+// Progress of a module run, reported the way the host understands it:
+//  - Slicer running the program: <filter-start>/<filter-progress>/<filter-end> tags on stdout,
+//    one per line, flushed;
+//  - a person at a terminal: readable lines with stage names and times instead;
+//  - Slicer running the library in-process: the ModuleProcessInformation struct and its callback.
+// Report() also polls the host's Abort flag and throws colonmap::Cancelled when it is set.
+#include "CLI/ProcessInformation.h"
+#include "Core/Cancel.h"
+
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace colonmap::cli {
+
+class Progress : public ProgressSink {
+ public:
+  enum class Style { SlicerTags, Terminal, Silent };
+
+  Progress(std::string moduleName, Style style, ModuleProcessInformation* info, std::FILE* out);
+
+  // Declares the stages of the run with their relative weights, so that overall progress rises
+  // evenly. Optional: undeclared stages share what is left.
+  void Plan(std::vector<std::pair<std::string, double>> stages);
+
+  void StartStage(const std::string& name, const std::string& comment = std::string());
+  void Report(double fraction) override;  // fraction of the current stage
+  void EndStage();
+  void Finish();                         // overall progress 1, final callback
+
+  // Seconds per finished stage, in order.
+  const std::vector<std::pair<std::string, double>>& StageTimes() const { return times_; }
+  bool AbortRequested() const { return info_ && info_->Abort; }
+  // Prints a note (never to stderr: Slicer logs stderr as errors).
+  void Note(const std::string& text);
+
+ private:
+  double Now() const;
+  void Publish(double stageFraction, bool force);
+  double StageWeight(const std::string& name) const;
+
+  std::string module_;
+  Style style_;
+  ModuleProcessInformation* info_;
+  std::FILE* out_;
+  std::vector<std::pair<std::string, double>> plan_;
+  std::vector<std::pair<std::string, double>> times_;
+  std::string stage_;
+  double stageStart_ = 0.0;
+  double doneWeight_ = 0.0;      // weights of finished stages
+  double currentWeight_ = 0.0;
+  double lastPublished_ = -1.0;
+  double lastPublishTime_ = -1.0;
+  double lastOverall_ = 0.0;
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace colonmap::cli

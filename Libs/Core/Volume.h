@@ -1,0 +1,37 @@
+#pragma once
+// A 3D image on a regular grid in LPS millimetres, free of ITK so that the math layer and its
+// tests compile fast. Conversion to and from itk::Image lives only in Libs/IO.
+#include <Eigen/Core>
+#include <array>
+#include <cstddef>
+#include <vector>
+
+namespace colonmap {
+
+template <typename T>
+struct Volume {
+  std::array<std::size_t, 3> size{{0, 0, 0}};   // voxels along i, j, k
+  Eigen::Vector3d spacing{1.0, 1.0, 1.0};       // mm
+  Eigen::Vector3d origin{0.0, 0.0, 0.0};        // LPS mm of voxel (0,0,0) centre
+  Eigen::Matrix3d direction = Eigen::Matrix3d::Identity();  // columns: i, j, k axes in LPS
+  std::vector<T> voxels;                        // i fastest, then j, then k
+
+  std::size_t NumberOfVoxels() const { return size[0] * size[1] * size[2]; }
+  void Allocate(const T& value = T()) { voxels.assign(NumberOfVoxels(), value); }
+  std::size_t Offset(std::size_t i, std::size_t j, std::size_t k) const {
+    return i + size[0] * (j + size[1] * k);
+  }
+  T& At(std::size_t i, std::size_t j, std::size_t k) { return voxels[Offset(i, j, k)]; }
+  const T& At(std::size_t i, std::size_t j, std::size_t k) const { return voxels[Offset(i, j, k)]; }
+
+  // Continuous index -> LPS mm.
+  Eigen::Vector3d IndexToPhysical(const Eigen::Vector3d& index) const {
+    return origin + direction * spacing.cwiseProduct(index);
+  }
+  // LPS mm -> continuous index.
+  Eigen::Vector3d PhysicalToIndex(const Eigen::Vector3d& p) const {
+    return (direction.transpose() * (p - origin)).cwiseQuotient(spacing);
+  }
+};
+
+}  // namespace colonmap

@@ -1,0 +1,21 @@
+#pragma once
+// Image files <-> Volume, through itk::ImageFileReader/Writer only (so that in-process Slicer
+// paths such as "slicer:0x..#vtkMRMLScalarVolumeNode1" work through Slicer's own ImageIO).
+// Formats: NRRD (default), NIfTI, MetaImage, and a folder holding a DICOM series (GDCM).
+// Origin, spacing and direction are honoured. `what` names the input in error messages.
+#include "Core/Volume.h"
+
+#include <string>
+
+namespace colonmap::io {
+
+// Throws colonmap::Error ("<what> '<path>': <problem>") for a missing file, an unknown format,
+// a folder without DICOM, a truncated or corrupt file, or non-finite / non-positive spacing.
+template <typename T>
+Volume<T> ReadImage(const std::string& path, const std::string& what);
+
+// Writes with compression; the format follows the extension.
+template <typename T>
+void WriteImage(const Volume<T>& image, const std::string& path, const std::string& what);
+
+}  // namespace colonmap::io

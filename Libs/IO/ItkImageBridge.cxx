@@ -1,0 +1,164 @@
+#include "IO/ItkImageBridge.h"
+
+#include "Core/Error.h"
+
+#include <itkGDCMImageIO.h>
+#include <itkGDCMSeriesFileNames.h>
+#include <itkImage.h>
+#include <itkImageFileReader.h>
+#include <itkImageFileWriter.h>
+#include <itkImageSeriesReader.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+namespace fs = std::filesystem;
+
+namespace colonmap::io::detail {
+namespace {
+
+template <typename T>
+using ItkImage = itk::Image<T, 3>;
+
+std::string OneLine(const itk::ExceptionObject& e) {
+  std::string s = e.GetDescription();
+  std::replace(s.begin(), s.end(), '\n', ' ');
+  while (!s.empty() && s.back() == ' ') s.pop_back();
+  return s;
+}
+
+// In-process, Slicer hands over images as "slicer:0x..#vtkMRMLScalarVolumeNode1", which only
+// its own ImageIO (registered with ITK's factory) understands.
+bool IsHostPath(const std::string& path) { return path.rfind("slicer:", 0) == 0; }
+
+template <typename T>
+typename ItkImage<T>::Pointer ReadDicomSeries(const std::string& folder, const std::string& what) {
+  // Look for a DICOM file first: GDCMSeriesFileNames warns on stderr when there is none.
+  bool anyDicom = false;
+  auto probe = itk::GDCMImageIO::New();
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(folder, ec)) {
+    if (entry.is_regular_file(ec) && probe->CanReadFile(entry.path().c_str())) {
+      anyDicom = true;
+      break;
+    }
+  }
+  if (!anyDicom) throw InputError(what, folder, "folder holds no DICOM series");
+  auto names = itk::GDCMSeriesFileNames::New();
+  names->SetUseSeriesDetails(true);
+  names->SetDirectory(folder);
+  const auto& uids = names->GetSeriesUIDs();
+  if (uids.empty()) throw InputError(what, folder, "folder holds no DICOM series");
+  // The series with most slices is the volume a user means when pointing at a folder.
+  std::string best;
+  std::size_t bestCount = 0;
+  for (const auto& uid : uids) {
+    const std::size_t n = names->GetFileNames(uid).size();
+    if (n > bestCount) { best = uid; bestCount = n; }
+  }
+  auto reader = itk::ImageSeriesReader<ItkImage<T>>::New();
+  reader->SetImageIO(itk::GDCMImageIO::New());
+  reader->SetFileNames(names->GetFileNames(best));
+  reader->Update();
+  return reader->GetOutput();
+}
+
+// ITK's NRRD reader takes a NaN spacing, direction or origin as "unknown" and silently uses 1 mm
+// or identity; a radiologist's measurement would then be wrong without a word. Scan the text
+// header for NaN in those fields before reading.
+void CheckNrrdHeader(const std::string& path, const std::string& what) {
+  std::string lower = path;
+  for (auto& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (lower.size() < 5 || (lower.compare(lower.size() - 5, 5, ".nrrd") != 0 &&
+                           lower.compare(lower.size() - 5, 5, ".nhdr") != 0))
+    return;
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  for (int n = 0; n < 200 && std::getline(in, line) && !line.empty() && line != "\r"; ++n) {
+    for (auto& c : line) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    for (const char* field : {"spacings:", "space directions:", "space origin:"})
+      if (line.rfind(field, 0) == 0 && line.find("nan") != std::string::npos)
+        throw InputError(what, path, std::string("header field '") + field + "' holds NaN");
+  }
+}
+
+}  // namespace
+
+template <typename T>
+void ItkReadImage(const std::string& path, const std::string& what, ImageGeometry& g, std::vector<T>& voxels) {
+  if (path.empty()) throw Error(what + ": no file given");
+  std::error_code ec;
+  if (!IsHostPath(path) && !fs::exists(path, ec)) throw InputError(what, path, "file does not exist");
+  if (!IsHostPath(path)) CheckNrrdHeader(path, what);
+  typename ItkImage<T>::Pointer image;
+  try {
+    if (!IsHostPath(path) && fs::is_directory(path, ec)) {
+      image = ReadDicomSeries<T>(path, what);
+    } else {
+      auto reader = itk::ImageFileReader<ItkImage<T>>::New();
+      reader->SetFileName(path);
+      reader->Update();
+      image = reader->GetOutput();
+    }
+  } catch (const itk::ExceptionObject& e) {
+    const std::string m = OneLine(e);
+    if (m.find("Could not create IO object") != std::string::npos)
+      throw InputError(what, path, "unknown or unsupported image format");
+    throw InputError(what, path, "cannot be read (" + m + ")");
+  }
+  const auto size = image->GetLargestPossibleRegion().GetSize();
+  for (unsigned d = 0; d < 3; ++d) {
+    g.size[d] = size[d];
+    g.spacing[d] = image->GetSpacing()[d];
+    g.origin[d] = image->GetOrigin()[d];
+    for (unsigned e = 0; e < 3; ++e) g.direction[3 * d + e] = image->GetDirection()[d][e];
+  }
+  const std::size_t n = g.size[0] * g.size[1] * g.size[2];
+  voxels.assign(image->GetBufferPointer(), image->GetBufferPointer() + n);
+}
+
+template <typename T>
+void ItkWriteImage(const ImageGeometry& g, const T* voxels, const std::string& path, const std::string& what) {
+  auto image = ItkImage<T>::New();
+  typename ItkImage<T>::RegionType region;
+  typename ItkImage<T>::SpacingType spacing;
+  typename ItkImage<T>::PointType origin;
+  typename ItkImage<T>::DirectionType direction;
+  for (unsigned d = 0; d < 3; ++d) {
+    region.SetSize(d, g.size[d]);
+    spacing[d] = g.spacing[d];
+    origin[d] = g.origin[d];
+    for (unsigned e = 0; e < 3; ++e) direction[d][e] = g.direction[3 * d + e];
+  }
+  image->SetRegions(region);
+  image->SetSpacing(spacing);
+  image->SetOrigin(origin);
+  image->SetDirection(direction);
+  // Wrap the caller's buffer instead of copying it (clinical CTs are hundreds of MB).
+  const std::size_t n = g.size[0] * g.size[1] * g.size[2];
+  image->GetPixelContainer()->SetImportPointer(const_cast<T*>(voxels), n, false);
+  try {
+    auto writer = itk::ImageFileWriter<ItkImage<T>>::New();
+    writer->SetFileName(path);
+    writer->SetInput(image);
+    writer->SetUseCompression(true);
+    writer->Update();
+  } catch (const itk::ExceptionObject& e) {
+    const std::string m = OneLine(e);
+    if (m.find("Could not create IO object") != std::string::npos)
+      throw InputError(what, path, "unknown or unsupported image format");
+    throw InputError(what, path, "cannot be written (" + m + ")");
+  }
+}
+
+// The pixel types the pipeline uses: CT (HU), label maps, float images.
+#define COLONMAP_INSTANTIATE(T)                                                                   \
+  template void ItkReadImage<T>(const std::string&, const std::string&, ImageGeometry&, std::vector<T>&); \
+  template void ItkWriteImage<T>(const ImageGeometry&, const T*, const std::string&, const std::string&);
+COLONMAP_INSTANTIATE(short)
+COLONMAP_INSTANTIATE(unsigned char)
+COLONMAP_INSTANTIATE(float)
+#undef COLONMAP_INSTANTIATE
+
+}  // namespace colonmap::io::detail

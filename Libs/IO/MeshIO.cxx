@@ -1,0 +1,276 @@
+#include "IO/MeshIO.h"
+
+#include "Core/Error.h"
+
+#include <vtkCallbackCommand.h>
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkCommand.h>
+#include <vtkDoubleArray.h>
+#include <vtkIdList.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataReader.h>
+#include <vtkPolyDataWriter.h>
+#include <vtkSTLReader.h>
+#include <vtkSmartPointer.h>
+#include <vtkStringArray.h>
+#include <vtkXMLPolyDataReader.h>
+#include <vtkXMLPolyDataWriter.h>
+
+#include <filesystem>
+
+namespace fs = std::filesystem;
+
+namespace colonmap::io {
+namespace {
+
+std::string Lower(std::string s) {
+  for (auto& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// Collects VTK errors of one reader/writer instead of letting them reach stderr (observers are
+// per object: no global state is touched).
+struct ErrorCollector {
+  std::string message;
+  vtkNew<vtkCallbackCommand> command;
+  explicit ErrorCollector(vtkObject* object) {
+    command->SetClientData(this);
+    command->SetCallback([](vtkObject*, unsigned long event, void* client, void* data) {
+      auto* self = static_cast<ErrorCollector*>(client);
+      if (event == vtkCommand::ErrorEvent && self->message.empty() && data) {
+        self->message = static_cast<const char*>(data);
+        for (auto& c : self->message) if (c == '\n') c = ' ';
+      }
+    });
+    object->AddObserver(vtkCommand::ErrorEvent, command);
+    object->AddObserver(vtkCommand::WarningEvent, command);
+  }
+};
+
+vtkSmartPointer<vtkPolyData> ReadPolyData(const std::string& path, const std::string& what) {
+  std::error_code ec;
+  if (path.empty()) throw Error(what + ": no file given");
+  if (!fs::exists(path, ec)) throw InputError(what, path, "file does not exist");
+  if (fs::is_directory(path, ec)) throw InputError(what, path, "is a folder, not a surface file");
+  const std::string ext = Lower(fs::path(path).extension().string());
+  vtkSmartPointer<vtkPolyData> output;
+  std::string error;
+  if (ext == ".vtp") {
+    vtkNew<vtkXMLPolyDataReader> r;
+    ErrorCollector errors(r);
+    r->SetFileName(path.c_str());
+    r->Update();
+    error = errors.message;
+    if (error.empty() && r->GetErrorCode() != 0) error = "read error";
+    output = r->GetOutput();
+  } else if (ext == ".vtk") {
+    vtkNew<vtkPolyDataReader> r;
+    ErrorCollector errors(r);
+    r->SetFileName(path.c_str());
+    if (!r->IsFilePolyData()) throw InputError(what, path, "is not a VTK polydata file");
+    r->Update();
+    error = errors.message;
+    output = r->GetOutput();
+  } else if (ext == ".stl") {
+    vtkNew<vtkSTLReader> r;
+    ErrorCollector errors(r);
+    r->SetFileName(path.c_str());
+    r->Update();
+    error = errors.message;
+    output = r->GetOutput();
+  } else {
+    throw InputError(what, path, "unknown surface format (expected .vtp, .vtk or .stl)");
+  }
+  if (!error.empty()) throw InputError(what, path, "cannot be read (" + error + ")");
+  if (!output || output->GetNumberOfPoints() == 0) throw InputError(what, path, "holds no points");
+  return output;
+}
+
+void ReadArrays(vtkDataSetAttributes* attributes, std::map<std::string, DataArray>& arrays, vtkIdType n) {
+  for (int a = 0; a < attributes->GetNumberOfArrays(); ++a) {
+    vtkDataArray* array = attributes->GetArray(a);
+    if (!array || !array->GetName() || array->GetNumberOfTuples() != n) continue;
+    DataArray d;
+    d.integer = array->GetDataType() != VTK_FLOAT && array->GetDataType() != VTK_DOUBLE;
+    const int k = array->GetNumberOfComponents();
+    d.values.resize(n, k);
+    for (vtkIdType i = 0; i < n; ++i)
+      for (int c = 0; c < k; ++c) d.values(i, c) = array->GetComponent(i, c);
+    arrays[array->GetName()] = std::move(d);
+  }
+}
+
+void WriteArrays(const std::map<std::string, DataArray>& arrays, vtkDataSetAttributes* attributes) {
+  for (const auto& [name, d] : arrays) {
+    vtkSmartPointer<vtkDataArray> array;
+    if (d.integer) array = vtkSmartPointer<vtkIntArray>::New();
+    else array = vtkSmartPointer<vtkDoubleArray>::New();
+    array->SetName(name.c_str());
+    array->SetNumberOfComponents(static_cast<int>(d.values.cols()));
+    array->SetNumberOfTuples(d.values.rows());
+    for (Eigen::Index i = 0; i < d.values.rows(); ++i)
+      for (Eigen::Index c = 0; c < d.values.cols(); ++c)
+        array->SetComponent(i, static_cast<int>(c), d.values(i, c));
+    attributes->AddArray(array);
+  }
+}
+
+vtkSmartPointer<vtkPoints> ToPoints(const Eigen::MatrixXd& V) {
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(V.rows());
+  for (Eigen::Index i = 0; i < V.rows(); ++i) points->SetPoint(i, V(i, 0), V(i, 1), V(i, 2));
+  return points;
+}
+
+Eigen::MatrixXd FromPoints(vtkPoints* points) {
+  Eigen::MatrixXd V(points->GetNumberOfPoints(), 3);
+  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i) {
+    double p[3];
+    points->GetPoint(i, p);
+    V.row(i) << p[0], p[1], p[2];
+  }
+  return V;
+}
+
+void WritePolyData(vtkPolyData* data, const std::string& path, const std::string& what) {
+  const std::string ext = Lower(fs::path(path).extension().string());
+  std::string error;
+  int ok = 0;
+  if (ext == ".vtp") {
+    vtkNew<vtkXMLPolyDataWriter> w;
+    ErrorCollector errors(w);
+    w->SetFileName(path.c_str());
+    w->SetInputData(data);
+    w->SetDataModeToAppended();
+    w->SetCompressorTypeToZLib();
+    ok = w->Write();
+    error = errors.message;
+  } else if (ext == ".vtk") {
+    vtkNew<vtkPolyDataWriter> w;
+    ErrorCollector errors(w);
+    w->SetFileName(path.c_str());
+    w->SetInputData(data);
+    w->SetFileTypeToBinary();
+    ok = w->Write();
+    error = errors.message;
+  } else {
+    throw InputError(what, path, "unknown surface format (expected .vtp or .vtk)");
+  }
+  if (!ok || !error.empty()) throw InputError(what, path, "cannot be written (" + error + ")");
+}
+
+}  // namespace
+
+TriangleMesh ReadMesh(const std::string& path, const std::string& what) {
+  vtkSmartPointer<vtkPolyData> data = ReadPolyData(path, what);
+  TriangleMesh mesh;
+  mesh.V = FromPoints(data->GetPoints());
+  // Fan-triangulate polygons (strips are rare in our inputs and are not accepted).
+  if (data->GetNumberOfStrips() > 0) throw InputError(what, path, "triangle strips are not supported");
+  std::vector<Eigen::Vector3i> faces;
+  std::vector<vtkIdType> faceSource;
+  vtkCellArray* polys = data->GetPolys();
+  vtkNew<vtkIdList> ids;
+  polys->InitTraversal();
+  for (vtkIdType cell = 0; polys->GetNextCell(ids); ++cell) {
+    for (vtkIdType k = 1; k + 1 < ids->GetNumberOfIds(); ++k) {
+      faces.emplace_back(static_cast<int>(ids->GetId(0)), static_cast<int>(ids->GetId(k)),
+                         static_cast<int>(ids->GetId(k + 1)));
+      faceSource.push_back(cell);
+    }
+  }
+  if (faces.empty()) throw InputError(what, path, "holds no triangles");
+  mesh.F.resize(static_cast<Eigen::Index>(faces.size()), 3);
+  for (std::size_t f = 0; f < faces.size(); ++f) mesh.F.row(static_cast<Eigen::Index>(f)) = faces[f].transpose();
+  ReadArrays(data->GetPointData(), mesh.pointData, data->GetNumberOfPoints());
+  // Cell arrays are only meaningful when there are only polygons (VTK orders verts/lines first).
+  if (data->GetNumberOfCells() == data->GetNumberOfPolys()) {
+    std::map<std::string, DataArray> cells;
+    ReadArrays(data->GetCellData(), cells, data->GetNumberOfCells());
+    for (auto& [name, d] : cells) {
+      DataArray expanded;
+      expanded.integer = d.integer;
+      expanded.values.resize(static_cast<Eigen::Index>(faceSource.size()), d.values.cols());
+      for (std::size_t f = 0; f < faceSource.size(); ++f)
+        expanded.values.row(static_cast<Eigen::Index>(f)) = d.values.row(faceSource[f]);
+      mesh.cellData[name] = std::move(expanded);
+    }
+  }
+  return mesh;
+}
+
+void WriteMesh(const TriangleMesh& mesh, const std::string& path, const std::string& what) {
+  vtkNew<vtkPolyData> data;
+  data->SetPoints(ToPoints(mesh.V));
+  vtkNew<vtkCellArray> polys;
+  polys->AllocateExact(mesh.F.rows(), 3 * mesh.F.rows());
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    const vtkIdType ids[3] = {static_cast<vtkIdType>(mesh.F(f, 0)), static_cast<vtkIdType>(mesh.F(f, 1)),
+                             static_cast<vtkIdType>(mesh.F(f, 2))};
+    polys->InsertNextCell(3, ids);
+  }
+  data->SetPolys(polys);
+  WriteArrays(mesh.pointData, data->GetPointData());
+  WriteArrays(mesh.cellData, data->GetCellData());
+  WritePolyData(data, path, what);
+}
+
+PolylineSet ReadPolylines(const std::string& path, const std::string& what) {
+  vtkSmartPointer<vtkPolyData> data = ReadPolyData(path, what);
+  PolylineSet set;
+  auto* names = vtkStringArray::SafeDownCast(data->GetCellData()->GetAbstractArray("Name"));
+  vtkCellArray* lines = data->GetLines();
+  vtkNew<vtkIdList> ids;
+  lines->InitTraversal();
+  for (vtkIdType cell = 0; lines->GetNextCell(ids); ++cell) {
+    Polyline line;
+    const vtkIdType n = ids->GetNumberOfIds();
+    line.closed = n > 2 && ids->GetId(0) == ids->GetId(n - 1);
+    const vtkIdType count = line.closed ? n - 1 : n;
+    line.points.resize(count, 3);
+    for (vtkIdType k = 0; k < count; ++k) {
+      double p[3];
+      data->GetPoint(ids->GetId(k), p);
+      line.points.row(k) << p[0], p[1], p[2];
+    }
+    if (names && cell < names->GetNumberOfValues()) line.name = names->GetValue(cell);
+    set.lines.push_back(std::move(line));
+  }
+  if (set.lines.empty()) throw InputError(what, path, "holds no polylines");
+  ReadArrays(data->GetPointData(), set.pointData, data->GetNumberOfPoints());
+  return set;
+}
+
+void WritePolylines(const PolylineSet& set, const std::string& path, const std::string& what) {
+  Eigen::Index total = 0;
+  for (const auto& l : set.lines) total += l.points.rows();
+  Eigen::MatrixXd V(total, 3);
+  vtkNew<vtkCellArray> cells;
+  vtkNew<vtkStringArray> names;
+  names->SetName("Name");
+  Eigen::Index offset = 0;
+  for (const auto& l : set.lines) {
+    V.middleRows(offset, l.points.rows()) = l.points;
+    std::vector<vtkIdType> ids;
+    for (Eigen::Index k = 0; k < l.points.rows(); ++k) ids.push_back(offset + k);
+    if (l.closed && !ids.empty()) ids.push_back(offset);
+    cells->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
+    names->InsertNextValue(l.name);
+    offset += l.points.rows();
+  }
+  vtkNew<vtkPolyData> data;
+  data->SetPoints(ToPoints(V));
+  data->SetLines(cells);
+  data->GetCellData()->AddArray(names);
+  WriteArrays(set.pointData, data->GetPointData());
+  WriteArrays(set.cellData, data->GetCellData());
+  WritePolyData(data, path, what);
+}
+
+}  // namespace colonmap::io

@@ -1,0 +1,129 @@
+#include "SynthesizeCT.h"
+
+#include "Random.h"
+#include "TubeLocator.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace colonmap {
+namespace phantom {
+namespace {
+
+// Signed distance to an axis-aligned ellipse in the xy plane, first order (F / |grad F|):
+// accurate near the boundary, right sign everywhere.
+double EllipseDistance(double x, double y, double a, double b) {
+  const double F = (x / a) * (x / a) + (y / b) * (y / b) - 1.0;
+  const double gx = 2.0 * x / (a * a), gy = 2.0 * y / (b * b);
+  const double g = std::sqrt(gx * gx + gy * gy);
+  return g > 1e-9 ? F / g : -std::min(a, b);
+}
+
+double BodyHU(const Eigen::Vector3d& p, const TissueModel& t, double W) {
+  const double dOut = EllipseDistance(p.x(), p.y(), t.bodySemiAxisXMm, t.bodySemiAxisYMm);
+  if (dOut >= W) return t.airHU;
+  const double dIn = EllipseDistance(p.x(), p.y(), t.bodySemiAxisXMm - t.bodyRimMm, t.bodySemiAxisYMm - t.bodyRimMm);
+  return t.airHU + (t.softTissueHU - t.airHU) * PartialVolumeStep(-dOut, W) +
+         (t.fatHU - t.softTissueHU) * PartialVolumeStep(-dIn, W);
+}
+
+// Loops over the grid in slabs of slices: parallel inside a slab, progress between slabs (a
+// Cancelled exception must not leave an OpenMP region).
+template <typename Voxel>
+void ForEachVoxel(const Volume<short>& geometry, ProgressSink& progress, Voxel&& voxel) {
+  const long nx = static_cast<long>(geometry.size[0]), ny = static_cast<long>(geometry.size[1]),
+             nz = static_cast<long>(geometry.size[2]);
+  const long slab = std::max(1L, 400000L / std::max(1L, nx * ny));
+  progress.Report(0.0);
+  for (long k0 = 0; k0 < nz; k0 += slab) {
+    const long k1 = std::min(nz, k0 + slab);
+    const long rows = (k1 - k0) * ny;
+#pragma omp parallel for schedule(dynamic, 4)
+    for (long r = 0; r < rows; ++r) {
+      const long k = k0 + r / ny, j = r % ny;
+      for (long i = 0; i < nx; ++i) voxel(i, j, k);
+    }
+    progress.Report(static_cast<double>(k1) / static_cast<double>(nz));
+  }
+}
+
+}  // namespace
+
+double PartialVolumeHalfWidth(const PhantomOptions& options) {
+  const double h = options.spacing.mean();
+  const double b = options.tissue.blurSigmaVoxels * h;
+  const double sigma = std::sqrt(h * h / 12.0 + b * b);
+  return 1.88 * sigma;  // the cubic's slope at 0, 3/(4W), equals the Gaussian's, 1/(sqrt(2 pi) sigma)
+}
+
+double PartialVolumeStep(double d, double W) {
+  if (d <= -W) return 0.0;
+  if (d >= W) return 1.0;
+  const double t = 0.5 * (d / W + 1.0);
+  return t * t * (3.0 - 2.0 * t);
+}
+
+Volume<short> CTGrid(const PhantomOptions& options) {
+  Volume<short> v;
+  const Eigen::Vector3d& fov = options.tissue.fieldOfViewMm;
+  for (int d = 0; d < 3; ++d) v.size[d] = static_cast<std::size_t>(std::max(1.0, std::round(fov[d] / options.spacing[d])));
+  v.spacing = options.spacing;
+  const Eigen::Vector3d n(static_cast<double>(v.size[0]), static_cast<double>(v.size[1]), static_cast<double>(v.size[2]));
+  // Voxel centres symmetric about the field-of-view centre.
+  v.origin = options.tissue.fieldOfViewCentre - 0.5 * (n - Eigen::Vector3d::Ones()).cwiseProduct(options.spacing);
+  return v;
+}
+
+void SynthesizeCTOnGrid(const ScanGeometry& scan, const PhantomOptions& options, Volume<short>& grid,
+                        ProgressSink& progress) {
+  const TissueModel& t = options.tissue;
+  const double W = PartialVolumeHalfWidth(options);
+  const TubeLocator tube(scan, t.wallThicknessMm, W + 0.5);
+  grid.Allocate(0);
+  const std::uint64_t noiseKey = Hash(scan.anatomy.seed, scan.posture == Posture::Supine ? 11 : 12);
+  const bool fluid = options.fluid;
+  ForEachVoxel(grid, progress, [&](long i, long j, long k) {
+    const Eigen::Vector3d p = grid.IndexToPhysical(Eigen::Vector3d(double(i), double(j), double(k)));
+    const double outside = BodyHU(p, t, W);
+    double hu = outside;
+    const TubeSample q = tube.Query(p);
+    if (q.near) {
+      double content = t.airHU;
+      if (fluid) {
+        if (const FluidPool* pool = scan.PoolAt(q.u))
+          content += (scan.fluidHU - t.airHU) * PartialVolumeStep(pool->level - scan.Height(p), W);
+      }
+      const double a = PartialVolumeStep(q.innerDistance, W);
+      const double b = std::min(a, PartialVolumeStep(q.outerDistance, W));
+      hu = (1.0 - a) * content + (a - b) * t.wallHU + b * outside;
+    }
+    const std::size_t offset = grid.Offset(i, j, k);
+    hu += t.noiseSigmaHU * HashToNormal(Hash(noiseKey, offset));
+    grid.voxels[offset] = static_cast<short>(std::lround(std::clamp(hu, -1024.0, 3071.0)));
+  });
+}
+
+Volume<short> SynthesizeCT(const ScanGeometry& scan, const PhantomOptions& options, ProgressSink& progress) {
+  Volume<short> v = CTGrid(options);
+  SynthesizeCTOnGrid(scan, options, v, progress);
+  return v;
+}
+
+Volume<unsigned char> LumenLabel(const ScanGeometry& scan, const PhantomOptions& options, ProgressSink& progress) {
+  const Volume<short> geometry = CTGrid(options);
+  Volume<unsigned char> label;
+  label.size = geometry.size;
+  label.spacing = geometry.spacing;
+  label.origin = geometry.origin;
+  label.direction = geometry.direction;
+  label.Allocate(0);
+  const TubeLocator tube(scan, options.tissue.wallThicknessMm, 1.0);
+  ForEachVoxel(geometry, progress, [&](long i, long j, long k) {
+    const Eigen::Vector3d p = geometry.IndexToPhysical(Eigen::Vector3d(double(i), double(j), double(k)));
+    if (tube.IsLumen(p)) label.At(i, j, k) = 1;
+  });
+  return label;
+}
+
+}  // namespace phantom
+}  // namespace colonmap

@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# Sets everything up (scripts/setup.sh) and runs the whole test suite with ctest.
+set -euo pipefail
+repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build=${COLONMAP_BUILD_DIR:-$repo/build}
+bash "$repo/scripts/setup.sh"
+cd "$build/ColonMap-build"
+ctest --output-on-failure -j "${COLONMAP_JOBS:-$(nproc)}" "$@"
