@@ -58,8 +58,8 @@ constexpr WaypointSpec kSpecs[] = {
     {-12, 56, -115, kRectum, kSigmoidRectum, kFlexure, 0},
     {0, 76, -142, kRectum, -1, kFixed, 0},
     {0, 72, -175, kRectum, -1, kFixed, 0},
-    {0, 55, -200, kRectum, -1, kFixed, 0},
-    {0, 30, -218, kRectum, -1, kFixed, 0},  // anus (s = L)
+    {0, 55, -192, kRectum, -1, kFixed, 0},
+    {0, 32, -208, kRectum, -1, kFixed, 0},  // anus (s = L)
 };
 
 // Nominal base radius per segment (mm), for the wanted bend radius of the centreline.
@@ -181,9 +181,9 @@ ColonAnatomy MakeAnatomy(const PhantomOptions& options) {
     w.proneTwist = (mobile ? rp.Sign() * rp.Uniform(20.0, 45.0) : rp.Uniform(-6.0, 6.0)) * kPi / 180.0;
     // The prone lumen is on the whole less distended (supine is the insufflated reference);
     // flexures, held by ligaments, change least.
-    w.logDistension = mobile ? rp.Uniform(-1.0, -0.1) : rp.Uniform(flexure ? -0.3 : -0.6, 0.0);
+    w.logDistension = mobile ? rp.Uniform(-1.1, -0.2) : rp.Uniform(flexure ? -0.3 : -0.8, 0.0);
     // The elliptic change never widens the lumen by more than 10%: the tube keeps its clearance.
-    w.ellipticity = std::min(rp.Uniform(0.05, 0.3), 0.1 - w.logDistension);
+    w.ellipticity = std::min(rp.Uniform(0.1, 0.4), 0.1 - w.logDistension);
     w.ellipseAngle = rp.Uniform(0.0, kPi);
     // Wanted bend radius: well above the largest outer tube radius (base radius x 1.2 + wall).
     const int seg = spec.flexure >= 0 ? spec.segment - 1 : spec.segment;
@@ -211,7 +211,7 @@ ColonAnatomy MakeAnatomy(const PhantomOptions& options) {
                                   0.5 * (sSF + sDSJ),          sDSJ, 0.5 * (sDSJ + sRSJ), sRSJ,
                                   sRSJ + 0.3 * (L - sRSJ),     sRSJ + 0.55 * (L - sRSJ),
                                   sRSJ + 0.8 * (L - sRSJ),     L};
-  const double r0[] = {30.0, 27.0, 22.5, 21.0, 18.5, 18.0, 17.0, 16.0, 18.0, 22.5, 25.0, 23.0, 18.0};
+  const double r0[] = {30.0, 27.0, 22.5, 21.0, 17.5, 18.0, 17.0, 16.0, 18.0, 22.5, 25.0, 23.0, 19.5};
   std::vector<double> rv(rs.size());
   for (std::size_t k = 0; k < rs.size(); ++k) rv[k] = r0[k] * rr.Uniform(0.93, 1.07);
   a.radius = Pchip(rs, rv);

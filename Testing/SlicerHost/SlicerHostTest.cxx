@@ -37,6 +37,9 @@ struct ModuleCase {
   json table;
 };
 
+// gtest prints test parameters: show the module name, not the object's bytes.
+void PrintTo(const ModuleCase& c, std::ostream* os) { *os << c.name; }
+
 std::vector<ModuleCase> Cases() {
   std::vector<ModuleCase> cases;
   std::stringstream list(COLONMAP_HOST_TABLES);  // "Name=path|Name=path"
@@ -119,6 +122,10 @@ int RunInProcess(const Library& lib, const colonmap::cli::ModuleDescription& mod
   char address[32];
   std::snprintf(address, sizeof address, "%p", static_cast<void*>(&info));
   std::vector<std::string> args = {"slicer:0x55d0c0ffee00", "--processinformationaddress", address};
+  if (module.HasReturnParameters()) {
+    args.push_back("--returnparameterfile");
+    args.push_back((out / "returnparameters.txt").string());
+  }
   for (auto& a : colonmap::testing::SlicerArguments(module, table)) args.push_back(a);
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
@@ -202,8 +209,17 @@ TEST_P(SlicerHost, RunsOnAWorkerThreadWithProgressAndKeepsProcessState) {
     const fs::path out = FreshDir(c.name + "-run" + std::to_string(run));
     ModuleProcessInformation info{};
     ProgressLog log;
+    const auto start = std::chrono::steady_clock::now();
     const int rc = RunInProcess(lib, module, c.table["quick"], out, info, log, [] {});
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     ASSERT_EQ(rc, 0) << "run " << run;
+    std::cout << c.name << ": in-process run " << run << " took " << seconds << " s, "
+              << log.calls << " progress callbacks\n";
+    if (module.HasReturnParameters()) {
+      const std::string returned = ReadFile(out / "returnparameters.txt");
+      for (const auto& name : c.table["returns"])
+        EXPECT_NE(returned.find(name.get<std::string>() + " = "), std::string::npos) << returned;
+    }
     ASSERT_GE(log.values.size(), 3u);
     for (std::size_t i = 1; i < log.values.size(); ++i) EXPECT_GE(log.values[i], log.values[i - 1]);
     EXPECT_FLOAT_EQ(log.values.back(), 1.0f);
@@ -240,6 +256,7 @@ TEST_P(SlicerHost, AbortStopsPromptlyReturnsZeroAndLeavesNothing) {
   EXPECT_EQ(rc, 0);
   EXPECT_LT(afterAbort, 1.0) << "took " << afterAbort << " s to stop after Abort";
   EXPECT_TRUE(fs::is_empty(out)) << "outputs left behind after Cancel";
+  std::cout << c.name << ": stopped " << afterAbort << " s after Abort\n";
   fs::remove_all(out);
 }
 

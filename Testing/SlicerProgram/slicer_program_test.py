@@ -53,7 +53,8 @@ def parameters(xml_text):
             yield {"tag": p.tag, "name": get("name"), "flag": get("flag").lstrip("-"),
                    "longflag": get("longflag").lstrip("-"), "index": get("index"),
                    "channel": get("channel"), "default": get("default"),
-                   "fileExtensions": p.get("fileExtensions", "")}
+                   "fileExtensions": p.get("fileExtensions", ""),
+                   "coordinateSystem": p.get("coordinateSystem", "")}
 
 
 def build_command(exe, xml_text, values, tempdir, returnfile):
@@ -106,6 +107,15 @@ def progress_values(stdout):
 def run_module(cli_dir, name, table):
     exe = os.path.join(cli_dir, name)
     xml_text = subprocess.run([exe, "--xml"], capture_output=True, text=True, check=True).stdout
+    # Conventions that keep Slicer from guessing (DESIGN §3.1a).
+    for p in parameters(xml_text):
+        if p["tag"] == "pointfile":
+            check(p["fileExtensions"].split(",")[0] == ".mrk.json",
+                  f"{name}: pointfile {p['name']} must declare fileExtensions=\".mrk.json\"")
+        if p["tag"] in ("point", "region"):
+            check(p["coordinateSystem"] == "lps", f"{name}: {p['tag']} {p['name']} must declare coordinateSystem=\"lps\"")
+        if p["tag"] == "boolean":
+            check(p["default"] in ("", "false"), f"{name}: boolean {p['name']} defaults to true (Slicer cannot switch it off)")
     work = tempfile.mkdtemp(prefix="colonmap-program-" + name + "-")
     try:
         # A normal run.

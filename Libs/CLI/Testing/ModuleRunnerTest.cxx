@@ -190,3 +190,22 @@ TEST(Progress, AddressParsing) {
   EXPECT_EQ(ProcessInformationFromAddress(""), nullptr);
   EXPECT_EQ(ProcessInformationFromAddress("zz"), nullptr);
 }
+
+TEST(Progress, TerminalStyleIsReadableWithStageTimes) {
+  std::FILE* out = std::tmpfile();
+  Progress progress("Demo", Progress::Style::Terminal, nullptr, out);
+  progress.StartStage("Segmentation", "lumen");
+  progress.Report(0.5);
+  progress.EndStage();
+  progress.Finish();
+  std::rewind(out);
+  char buffer[512] = {};
+  const std::size_t n = std::fread(buffer, 1, sizeof buffer - 1, out);
+  std::fclose(out);
+  const std::string text(buffer, n);
+  EXPECT_NE(text.find("Demo: Segmentation - lumen\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("Demo: Segmentation done in "), std::string::npos) << text;
+  EXPECT_EQ(text.find("<filter"), std::string::npos) << text;
+  ASSERT_EQ(progress.StageTimes().size(), 1u);
+  EXPECT_EQ(progress.StageTimes()[0].first, "Segmentation");
+}

@@ -62,6 +62,15 @@ TEST(PhantomGeometry, TubeInsideTheBodyFat) {
           EXPECT_GT(p.z(), lo.z() + 5.0);
           EXPECT_LT(p.z(), hi.z() - 5.0);
         }
+      // The closed ends (hemispheric caps) too.
+      for (double u : {0.0, scan.centerline.Length()}) {
+        Eigen::Vector3d T, N, B;
+        scan.centerline.Frame(u, T, N, B);
+        const double s = scan.MaterialS(u);
+        const Eigen::Vector3d tip = scan.centerline.Point(u) + (u == 0.0 ? -1.0 : 1.0) * (MaxOuterRadius(scan, s, 3.0) + 2.0) * T;
+        EXPECT_GT(tip.z(), lo.z() + 3.0);
+        EXPECT_LT(std::hypot(tip.x() / ax, tip.y() / ay), 1.0);
+      }
     }
   }
 }
