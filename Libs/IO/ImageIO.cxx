@@ -29,7 +29,7 @@ Volume<T> ReadImage(const std::string& path, const std::string& what) {
 }
 
 template <typename T>
-void WriteImage(const Volume<T>& v, const std::string& path, const std::string& what) {
+void WriteImage(const Volume<T>& v, const std::string& path, const std::string& what, Compression compression) {
   if (v.voxels.size() != v.NumberOfVoxels() || v.voxels.empty())
     throw InputError(what, path, "image to write is empty or inconsistent");
   detail::ImageGeometry g;
@@ -39,14 +39,14 @@ void WriteImage(const Volume<T>& v, const std::string& path, const std::string& 
     g.origin[d] = v.origin[d];
     for (int e = 0; e < 3; ++e) g.direction[3 * d + e] = v.direction(d, e);
   }
-  detail::ItkWriteImage<T>(g, v.voxels.data(), path, what);
+  detail::ItkWriteImage<T>(g, v.voxels.data(), path, what, compression == Compression::Fast);
 }
 
 template Volume<short> ReadImage<short>(const std::string&, const std::string&);
 template Volume<unsigned char> ReadImage<unsigned char>(const std::string&, const std::string&);
 template Volume<float> ReadImage<float>(const std::string&, const std::string&);
-template void WriteImage<short>(const Volume<short>&, const std::string&, const std::string&);
-template void WriteImage<unsigned char>(const Volume<unsigned char>&, const std::string&, const std::string&);
-template void WriteImage<float>(const Volume<float>&, const std::string&, const std::string&);
+template void WriteImage<short>(const Volume<short>&, const std::string&, const std::string&, Compression);
+template void WriteImage<unsigned char>(const Volume<unsigned char>&, const std::string&, const std::string&, Compression);
+template void WriteImage<float>(const Volume<float>&, const std::string&, const std::string&, Compression);
 
 }  // namespace colonmap::io

@@ -14,8 +14,14 @@ namespace colonmap::io {
 template <typename T>
 Volume<T> ReadImage(const std::string& path, const std::string& what);
 
-// Writes with compression; the format follows the extension.
+enum class Compression {
+  Fast,  // gzip level 1: label maps and smooth images shrink 10-100x at little cost
+  None,  // noisy CTs barely compress (0.54x) and gzip would take seconds at clinical size
+};
+
+// Writes the image; the format follows the extension.
 template <typename T>
-void WriteImage(const Volume<T>& image, const std::string& path, const std::string& what);
+void WriteImage(const Volume<T>& image, const std::string& path, const std::string& what,
+                Compression compression = Compression::Fast);
 
 }  // namespace colonmap::io

@@ -119,7 +119,8 @@ void ItkReadImage(const std::string& path, const std::string& what, ImageGeometr
 }
 
 template <typename T>
-void ItkWriteImage(const ImageGeometry& g, const T* voxels, const std::string& path, const std::string& what) {
+void ItkWriteImage(const ImageGeometry& g, const T* voxels, const std::string& path, const std::string& what,
+                   bool compress) {
   auto image = ItkImage<T>::New();
   typename ItkImage<T>::RegionType region;
   typename ItkImage<T>::SpacingType spacing;
@@ -142,7 +143,8 @@ void ItkWriteImage(const ImageGeometry& g, const T* voxels, const std::string& p
     auto writer = itk::ImageFileWriter<ItkImage<T>>::New();
     writer->SetFileName(path);
     writer->SetInput(image);
-    writer->SetUseCompression(true);
+    writer->SetUseCompression(compress);
+    if (compress) writer->SetCompressionLevel(1);  // fastest gzip: much quicker than the default 6
     writer->Update();
   } catch (const itk::ExceptionObject& e) {
     const std::string m = OneLine(e);
@@ -155,7 +157,7 @@ void ItkWriteImage(const ImageGeometry& g, const T* voxels, const std::string& p
 // The pixel types the pipeline uses: CT (HU), label maps, float images.
 #define COLONMAP_INSTANTIATE(T)                                                                   \
   template void ItkReadImage<T>(const std::string&, const std::string&, ImageGeometry&, std::vector<T>&); \
-  template void ItkWriteImage<T>(const ImageGeometry&, const T*, const std::string&, const std::string&);
+  template void ItkWriteImage<T>(const ImageGeometry&, const T*, const std::string&, const std::string&, bool);
 COLONMAP_INSTANTIATE(short)
 COLONMAP_INSTANTIATE(unsigned char)
 COLONMAP_INSTANTIATE(float)

@@ -22,6 +22,6 @@ void ItkReadImage(const std::string& path, const std::string& what, ImageGeometr
 
 template <typename T>
 void ItkWriteImage(const ImageGeometry& geometry, const T* voxels, const std::string& path,
-                   const std::string& what);
+                   const std::string& what, bool compress);
 
 }  // namespace colonmap::io::detail

@@ -136,9 +136,11 @@ void Run(cli::ModuleContext& ctx) {
   const auto file = [&](const std::string& name) {
     return ctx.outputs.Stage((fs::path(out) / name).string(), "output " + name);
   };
-  io::WriteImage(supineCT, file("supine.nrrd"), "supine CT");
+  // Uncompressed: the CT noise makes gzip slow and barely useful, and an uncompressed write
+  // keeps Cancel prompt (ITK's writer cannot be interrupted).
+  io::WriteImage(supineCT, file("supine.nrrd"), "supine CT", io::Compression::None);
   ctx.progress.Report(0.35);
-  io::WriteImage(proneCT, file("prone.nrrd"), "prone CT");
+  io::WriteImage(proneCT, file("prone.nrrd"), "prone CT", io::Compression::None);
   ctx.progress.Report(0.7);
   for (const ScanGeometry* scan : {&supine, &prone}) {
     const std::string p = scan == &supine ? "supine" : "prone";

@@ -1,0 +1,84 @@
+#!/usr/bin/env python3
+"""ColonMap benchmarks (not timed tests): runs modules on benchmark-size inputs and writes JSON
+with wall time, per-stage times (from the modules' <filter-end> tags) and peak memory.
+
+    python3 scripts/benchmark.py [--build build/ColonMap-build] [--output benchmark.json]
+
+Today: ColonPhantom at clinical size (0.7 x 0.7 x 1.0 mm, 512 x 512 x 450) and at test size.
+"""
+import argparse
+import json
+import os
+import platform
+import re
+import resource
+import shutil
+import subprocess
+import tempfile
+import time
+
+
+def machine():
+    model = ""
+    try:
+        for line in open("/proc/cpuinfo"):
+            if line.startswith("model name"):
+                model = line.split(":", 1)[1].strip()
+                break
+    except OSError:
+        pass
+    mem_kb = 0
+    try:
+        for line in open("/proc/meminfo"):
+            if line.startswith("MemTotal"):
+                mem_kb = int(line.split()[1])
+    except OSError:
+        pass
+    return {"cpu": model, "cores": os.cpu_count(), "memoryGB": round(mem_kb / 1024 / 1024, 1),
+            "system": platform.platform()}
+
+
+def run(cmd):
+    """Runs one command; returns wall seconds, stage times and the child's peak RSS (MB)."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+    start = time.time()
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    seconds = time.time() - start
+    peak = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+    if r.returncode != 0:
+        raise SystemExit(f"benchmark command failed: {' '.join(cmd)}\n{r.stderr}")
+    stages = {m.group(1): float(m.group(2)) for m in re.finditer(
+        r"<filter-end><filter-name>(.*?)</filter-name><filter-time>([0-9.]+)</filter-time>", r.stdout)}
+    # ru_maxrss of children is the largest so far: valid for the first run that exceeds it.
+    return {"seconds": round(seconds, 3), "stages": stages,
+            "peakMemoryMB": round(peak / 1024, 1) if peak > before else None}
+
+
+def main():
+    repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--build", default=os.path.join(repo, "build", "ColonMap-build"))
+    parser.add_argument("--output", default=os.path.join(repo, "build", "benchmark.json"))
+    args = parser.parse_args()
+    cli = os.path.join(args.build, "lib", "ColonMap", "cli-modules")
+    work = tempfile.mkdtemp(prefix="colonmap-benchmark-")
+    results = {"machine": machine(), "date": time.strftime("%Y-%m-%d %H:%M:%S"), "runs": {}}
+    try:
+        # Largest first, so that the children's peak memory belongs to it.
+        for label, spacing in (("ColonPhantom clinical 0.7x0.7x1.0 mm", "0.7,0.7,1.0"),
+                               ("ColonPhantom test size 2.5 mm", "2.5,2.5,2.5")):
+            out = os.path.join(work, label.split()[1])
+            results["runs"][label] = run([os.path.join(cli, "ColonPhantom"), "--outputDirectory", out,
+                                          "--spacing", spacing])
+            shutil.rmtree(out, ignore_errors=True)
+            print(label, json.dumps(results["runs"][label]))
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(os.path.dirname(os.path.abspath(args.output)), exist_ok=True)
+    with open(args.output, "w") as f:
+        json.dump(results, f, indent=2)
+    print("benchmark written to", args.output)
+
+
+if __name__ == "__main__":
+    main()
