@@ -115,8 +115,11 @@ int RunInProcess(const Library& lib, const colonmap::cli::ModuleDescription& mod
   std::map<std::string, std::string> table;
   for (auto& [k, v] : values.items()) {
     std::string s = v.template get<std::string>();
-    const auto at = s.find("{out}");
-    if (at != std::string::npos) s.replace(at, 5, out.string());
+    for (const auto& [key, value] : {std::pair<std::string, std::string>{"{out}", out.string()},
+                                     {"{data}", COLONMAP_TEST_DATA}}) {
+      const auto at = s.find(key);
+      if (at != std::string::npos) s.replace(at, key.size(), value);
+    }
     table[k] = s;
   }
   char address[32];

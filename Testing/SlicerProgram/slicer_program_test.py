@@ -26,6 +26,7 @@ DEFAULT_EXT = {"image": ".nrrd", "geometry": ".vtp", "pointfile": ".fcsv", "tabl
                "transform": ".h5"}
 FILE_TAGS = {"image", "geometry", "pointfile", "table", "transform", "file"}
 failures = []
+DATA = ""
 
 
 def check(condition, message):
@@ -97,7 +98,7 @@ def build_command(exe, xml_text, values, tempdir, returnfile):
 
 
 def substitute(table, out):
-    return {k: v.replace("{out}", out) for k, v in table.items()}
+    return {k: v.replace("{out}", out).replace("{data}", DATA) for k, v in table.items()}
 
 
 def progress_values(stdout):
@@ -138,11 +139,13 @@ def run_module(cli_dir, name, table):
             if line.startswith("<filter-progress>"):
                 check(re.fullmatch(r"<filter-progress>[0-9.]+</filter-progress>", line) is not None,
                       f"{name}: malformed progress line {line!r}")
+        check(not [f for f in os.listdir(out) if f.startswith(".colonmap-tmp")], f"{name}: temporaries left")
+        # Slicer reads each output from its temporary name; hand it to the table's path.
+        for temp, final in renamed.items():
+            if check(os.path.isfile(temp), f"{name}: output {temp} missing"):
+                shutil.move(temp, final)
         for f in table.get("outputs", []):
             check(os.path.isfile(os.path.join(out, f)), f"{name}: output {f} missing")
-        check(not [f for f in os.listdir(out) if f.startswith(".colonmap-tmp")], f"{name}: temporaries left")
-        for temp in renamed:
-            check(os.path.isfile(temp), f"{name}: output {temp} missing")
         if table.get("returns"):
             text = open(returnfile).read() if os.path.exists(returnfile) else ""
             for ret in table["returns"]:
@@ -153,7 +156,8 @@ def run_module(cli_dir, name, table):
         # A run killed part way leaves no output file.
         killed = os.path.join(work, "killed")
         os.makedirs(killed)
-        cmd, _ = build_command(exe, xml_text, substitute(table["long"], killed), slicer_tmp, returnfile + ".k")
+        cmd, killed_renamed = build_command(exe, xml_text, substitute(table["long"], killed), slicer_tmp,
+                                            returnfile + ".k")
         p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         time.sleep(table.get("abortAfterSeconds", 1.0))
         still_running = p.poll() is None
@@ -161,6 +165,7 @@ def run_module(cli_dir, name, table):
         p.communicate()
         check(still_running, f"{name}: the long run ended before it could be killed")
         left = [f for f in os.listdir(killed) if not f.startswith(".colonmap-tmp")]
+        left += [t for t in killed_renamed if os.path.exists(t)]
         check(not left, f"{name}: files left after SIGKILL: {left}")
     finally:
         shutil.rmtree(work, ignore_errors=True)
@@ -169,8 +174,11 @@ def run_module(cli_dir, name, table):
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--cli-dir", required=True)
+    parser.add_argument("--data", required=True, help="folder of test inputs, {data} in the tables")
     parser.add_argument("tables", nargs="+", help="Name=path/to/SlicerHost.json")
     args = parser.parse_args()
+    global DATA
+    DATA = args.data
     for item in args.tables:
         name, path = item.split("=", 1)
         with open(path) as f:
