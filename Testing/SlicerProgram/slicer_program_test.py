@@ -8,7 +8,7 @@ when true, empty values left out, index arguments last; file parameters get Slic
 temporary names (a temp folder, digits in node names turned into letters, the extension from
 fileExtensions or Slicer's default). It then checks the exit code, that stderr is empty, the
 progress tags on stdout, the outputs and the return parameter file. A second run is killed with
-SIGKILL part way and must leave no output file.
+SIGKILL once its progress reaches abortAtProgress and must leave no output file.
 """
 import argparse
 import json
@@ -158,9 +158,15 @@ def run_module(cli_dir, name, table):
         os.makedirs(killed)
         cmd, killed_renamed = build_command(exe, xml_text, substitute(table["long"], killed), slicer_tmp,
                                             returnfile + ".k")
-        p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-        time.sleep(table.get("abortAfterSeconds", 1.0))
-        still_running = p.poll() is None
+        # Killed part way, as Slicer's Cancel does: once the progress reaches abortAtProgress.
+        p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+        abort_at = table.get("abortAtProgress", 0.3)
+        still_running = False
+        for line in p.stdout:
+            m = re.match(r"<filter-progress>([0-9.]+)</filter-progress>", line)
+            if m and abort_at <= float(m.group(1)) < 1.0:
+                still_running = p.poll() is None
+                break
         p.send_signal(signal.SIGKILL)
         p.communicate()
         check(still_running, f"{name}: the long run ended before it could be killed")
