@@ -10,7 +10,7 @@ bash "$repo/scripts/setup.sh"
 cli="$build/ColonMap-build/lib/ColonMap/cli-modules"
 mkdir -p "$out"
 start=$(date +%s.%N)
-"$cli/ColonPhantom" --outputDirectory "$out/phantom" "$@" | grep -v '^<filter-progress>\|^<filter-stage-progress>'
+"$cli/ColonPhantom" --outputDirectory "$out/phantom" "$@"
 end=$(date +%s.%N)
 python3 - "$out" "$start" "$end" <<'PY'
 import json, os, sys
