@@ -1,0 +1,325 @@
+#include "Segmentation/LumenSegmentation.h"
+
+#include "Segmentation/ItkSegmentationFilters.h"
+
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <locale>
+#include <numeric>
+#include <sstream>
+
+namespace colonmap::segmentation {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Maps a sub-range of the caller's progress onto a step's own 0..1.
+class StepProgress : public ProgressSink {
+ public:
+  StepProgress(ProgressSink& parent, double from, double to) : parent_(parent), from_(from), to_(to) {}
+  void Report(double f) override { parent_.Report(from_ + (to_ - from_) * std::clamp(f, 0.0, 1.0)); }
+
+ private:
+  ProgressSink& parent_;
+  double from_, to_;
+};
+
+std::string Fixed(double value, int decimals) {
+  std::ostringstream s;
+  s.imbue(std::locale::classic());
+  s.setf(std::ios::fixed);
+  s.precision(decimals);
+  s << value;
+  return s.str();
+}
+// Volumes read best with the decimals their size needs.
+std::string Ml(double ml) { return Fixed(ml, ml < 10.0 ? 1 : 0) + " ml"; }
+
+// One component's padded bounding box as its own grid, for the per-component ITK filters.
+struct Crop {
+  std::array<std::size_t, 3> first{{0, 0, 0}};  // image index of crop voxel (1, 1, 1)
+  Volume<unsigned char> mask;                   // the component (1), padded by one zero voxel
+  detail::Grid Grid() const {
+    detail::Grid g;
+    for (int d = 0; d < 3; ++d) {
+      g.size[d] = mask.size[d];
+      g.spacing[d] = mask.spacing[d];
+    }
+    return g;
+  }
+};
+
+Crop CropComponent(const Volume<short>& ct, const std::vector<std::uint32_t>& labels, std::uint32_t label,
+                   const AirComponent& c, ProgressSink& progress) {
+  Crop crop;
+  crop.first = c.boxMin;
+  for (int d = 0; d < 3; ++d) crop.mask.size[d] = c.boxMax[d] - c.boxMin[d] + 3;
+  crop.mask.spacing = ct.spacing;
+  crop.mask.direction = ct.direction;
+  crop.mask.origin = ct.IndexToPhysical(Eigen::Vector3d(double(c.boxMin[0]) - 1, double(c.boxMin[1]) - 1,
+                                                        double(c.boxMin[2]) - 1));
+  crop.mask.Allocate(0);
+  for (std::size_t k = c.boxMin[2]; k <= c.boxMax[2]; ++k) {
+    for (std::size_t j = c.boxMin[1]; j <= c.boxMax[1]; ++j) {
+      const std::uint32_t* row = &labels[ct.Offset(0, j, k)];
+      unsigned char* out = &crop.mask.At(1, j - c.boxMin[1] + 1, k - c.boxMin[2] + 1);
+      for (std::size_t i = c.boxMin[0]; i <= c.boxMax[0]; ++i) out[i - c.boxMin[0]] = row[i] == label;
+    }
+    progress.Report(double(k - c.boxMin[2] + 1) / double(c.boxMax[2] - c.boxMin[2] + 1));
+  }
+  return crop;
+}
+
+void CheckOptions(const SegmentationOptions& o) {
+  if (!std::isfinite(o.airThresholdHU) || o.airThresholdHU <= -1024.0 || o.airThresholdHU >= 0.0)
+    throw Error("air threshold " + Fixed(o.airThresholdHU, 1) + " HU: expected a value between -1024 and 0");
+  if (!(o.minColonVolumeMl > 0.0) || !std::isfinite(o.minColonVolumeMl))
+    throw Error("minimum colon volume: expected a positive number of ml");
+  if (!(o.maxColonRadiusMm > 0.0) || !std::isfinite(o.maxColonRadiusMm))
+    throw Error("maximum colon radius: expected a positive number of mm");
+  if (!(o.minElongation >= 0.0) || !std::isfinite(o.minElongation))
+    throw Error("minimum elongation: expected a number >= 0");
+}
+
+}  // namespace
+
+const char* DecisionName(Decision d) {
+  switch (d) {
+    case Decision::Colon: return "colon";
+    case Decision::OutsideBody: return "outside body";
+    case Decision::AtSuperiorBorder: return "at superior border";
+    case Decision::TooSmall: return "too small";
+    case Decision::TooThick: return "too thick";
+    case Decision::NotElongated: return "not elongated";
+    case Decision::NotLargest: return "not the largest";
+  }
+  return "?";
+}
+
+std::size_t LumenSegmentation::Dropped(Decision d) const {
+  return static_cast<std::size_t>(
+      std::count_if(components.begin(), components.end(), [d](const AirComponent& c) { return c.decision == d; }));
+}
+
+LumenSegmentation SegmentColonLumen(const Volume<short>& ct, const SegmentationOptions& options,
+                                    ProgressSink& progress) {
+  CheckOptions(options);
+  const std::size_t n0 = ct.size[0], n1 = ct.size[1], n2 = ct.size[2];
+  const std::size_t count = ct.NumberOfVoxels();
+  if (count == 0 || ct.voxels.size() != count) throw Error("empty CT");
+  const double voxelMl = std::abs(ct.direction.determinant()) * ct.spacing.prod() / 1000.0;
+  const double minSpacing = ct.spacing.minCoeff();
+
+  LumenSegmentation result;
+  auto clock = std::chrono::steady_clock::now();
+  const auto lap = [&](const char* step) {
+    const auto now = std::chrono::steady_clock::now();
+    result.stepSeconds.emplace_back(step, std::chrono::duration<double>(now - clock).count());
+    clock = now;
+  };
+
+  // 1. Air.
+  std::vector<unsigned char> air(count);
+  {
+    StepProgress step(progress, 0.0, 0.04);
+    const short threshold = static_cast<short>(std::ceil(options.airThresholdHU));  // HU < t <=> HU < ceil(t) for integers
+    const std::size_t slice = n0 * n1;
+    for (std::size_t k = 0; k < n2; ++k) {
+      const short* in = &ct.voxels[k * slice];
+      unsigned char* out = &air[k * slice];
+      for (std::size_t v = 0; v < slice; ++v) out[v] = in[v] < threshold;
+      if (k % 16 == 15) step.Report(double(k + 1) / double(n2));
+    }
+  }
+
+  // 2. Components and their statistics.
+  detail::Grid grid;
+  for (int d = 0; d < 3; ++d) {
+    grid.size[d] = ct.size[d];
+    grid.spacing[d] = ct.spacing[d];
+  }
+  std::vector<std::uint32_t> labels;
+  std::uint32_t labelCount = 0;
+  {
+    StepProgress step(progress, 0.04, 0.35);
+    labelCount = detail::LabelComponents26(grid, air.data(), labels, step);
+  }
+  lap("threshold and components");
+  std::vector<unsigned char>().swap(air);
+  std::vector<AirComponent> byLabel(labelCount + 1);
+  // The index axis closest to the body's long (LPS z, superior) axis; the other two run across.
+  int longAxis = 0;
+  for (int d = 1; d < 3; ++d)
+    if (std::abs(ct.direction(2, d)) > std::abs(ct.direction(2, longAxis))) longAxis = d;
+  const std::size_t superiorIndex = ct.direction(2, longAxis) > 0 ? ct.size[longAxis] - 1 : 0;
+  std::vector<bool> touchesSide(labelCount + 1, false), touchesTop(labelCount + 1, false);
+  std::vector<Eigen::Vector3d> indexSum(labelCount + 1, Eigen::Vector3d::Zero());
+  for (auto& c : byLabel) {
+    c.boxMin = {{n0, n1, n2}};
+    c.boxMax = {{0, 0, 0}};
+  }
+  {
+    StepProgress step(progress, 0.35, 0.45);
+    for (std::size_t k = 0; k < n2; ++k) {
+      for (std::size_t j = 0; j < n1; ++j) {
+        const std::uint32_t* row = &labels[ct.Offset(0, j, k)];
+        const std::size_t at[3] = {0, j, k};
+        bool rowSide = false, rowTop = false;  // the row lies on a side face / the superior face
+        for (int d = 1; d < 3; ++d) {
+          const bool border = at[d] == 0 || at[d] + 1 == ct.size[d];
+          if (d == longAxis)
+            rowTop = at[d] == superiorIndex;
+          else
+            rowSide = rowSide || border;
+        }
+        for (std::size_t i = 0; i < n0; ++i) {
+          const std::uint32_t l = row[i];
+          if (!l) continue;
+          if (rowTop || (longAxis == 0 && i == superiorIndex)) touchesTop[l] = true;
+          AirComponent& c = byLabel[l];
+          ++c.voxels;
+          c.boxMin = {{std::min(c.boxMin[0], i), std::min(c.boxMin[1], j), std::min(c.boxMin[2], k)}};
+          c.boxMax = {{std::max(c.boxMax[0], i), std::max(c.boxMax[1], j), std::max(c.boxMax[2], k)}};
+          indexSum[l] += Eigen::Vector3d(double(i), double(j), double(k));
+          if (rowSide || (longAxis != 0 && (i == 0 || i + 1 == n0))) touchesSide[l] = true;
+        }
+      }
+      if (k % 8 == 7) step.Report(double(k + 1) / double(n2));
+    }
+  }
+  // Largest first; ties (equal volume) by label, which follows raster order: deterministic.
+  std::vector<std::uint32_t> order(labelCount);
+  std::iota(order.begin(), order.end(), 1u);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return byLabel[a].voxels > byLabel[b].voxels; });
+
+  lap("component statistics");
+
+  // 3. Decisions, largest first; shape measured on the component's own padded box.
+  result.components.reserve(labelCount);
+  bool found = false;
+  Crop colonCrop;
+  std::vector<float> colonDepth;
+  const AirComponent* largestInside = nullptr;
+  // The shape analysis shares its part of the progress by component size (monotone progress).
+  double analysed = 0.0, toAnalyse = 0.0;
+  for (std::uint32_t l : order)
+    if (!touchesSide[l] && !touchesTop[l] && double(byLabel[l].voxels) * voxelMl >= options.minColonVolumeMl)
+      toAnalyse += double(byLabel[l].voxels);
+  for (std::uint32_t l : order) {
+    AirComponent c = byLabel[l];
+    c.volumeMl = double(c.voxels) * voxelMl;
+    c.centroid = ct.IndexToPhysical(indexSum[l] / double(c.voxels));
+    if (touchesSide[l]) {
+      c.decision = Decision::OutsideBody;
+      c.reason = "touches a side of the image (air outside the body)";
+    } else if (touchesTop[l]) {
+      c.decision = Decision::AtSuperiorBorder;
+      c.reason = "touches the superior face of the image (lung base)";
+    } else if (c.volumeMl < options.minColonVolumeMl) {
+      c.decision = Decision::TooSmall;
+      c.reason = "below " + Ml(options.minColonVolumeMl) + " (small-bowel gas or an isolated pocket)";
+    } else {
+      // Fill the cavities first: the depth (and the growth below) then sees the whole lumen.
+      StepProgress step(progress, 0.45 + 0.17 * analysed / toAnalyse,
+                        0.45 + 0.17 * (analysed + double(c.voxels)) / toAnalyse);
+      analysed += double(c.voxels);
+      StepProgress cropStep(step, 0.0, 0.1), fillStep(step, 0.1, 0.5), depthStep(step, 0.5, 1.0);
+      Crop crop = CropComponent(ct, labels, l, c, cropStep);
+      const std::size_t before = std::count(crop.mask.voxels.begin(), crop.mask.voxels.end(), 1);
+      detail::FillCavities6(crop.Grid(), crop.mask.voxels, fillStep);
+      const std::size_t filled = std::count(crop.mask.voxels.begin(), crop.mask.voxels.end(), 1) - before;
+      std::vector<float> depth;
+      detail::InsideDistance(crop.Grid(), crop.mask.voxels.data(), depth, depthStep);
+      // Voxel centres of the boundary layer have depth 0 and lie about half a voxel inside.
+      c.maxRadiusMm = double(*std::max_element(depth.begin(), depth.end())) + 0.5 * minSpacing;
+      c.elongation = c.volumeMl * 1000.0 / (kPi * c.maxRadiusMm * c.maxRadiusMm) / (2.0 * c.maxRadiusMm);
+      if (c.maxRadiusMm > options.maxColonRadiusMm) {
+        c.decision = Decision::TooThick;
+        c.reason = "inscribed radius " + Fixed(c.maxRadiusMm, 0) + " mm > " + Fixed(options.maxColonRadiusMm, 0) +
+                   " mm (lung-like)";
+      } else if (c.elongation < options.minElongation) {
+        c.decision = Decision::NotElongated;
+        c.reason = "elongation " + Fixed(c.elongation, 1) + " < " + Fixed(options.minElongation, 1) +
+                   " (a compact pocket, not a tube)";
+      } else if (found) {
+        c.decision = Decision::NotLargest;
+        c.reason = "colon-like but smaller than the colon (the lumen is one component)";
+      } else {
+        c.decision = Decision::Colon;
+        c.reason = "largest thin, elongated air component inside the body";
+        found = true;
+        result.colon = result.components.size();
+        result.cavityVoxelsFilled = filled;
+        colonCrop = std::move(crop);
+        colonDepth = std::move(depth);
+      }
+    }
+    result.components.push_back(std::move(c));
+  }
+  for (const AirComponent& c : result.components)
+    if (c.decision != Decision::OutsideBody && c.decision != Decision::AtSuperiorBorder) {
+      largestInside = &c;
+      break;
+    }
+
+  if (!found) {
+    std::string what;
+    if (!largestInside) {
+      what = "no air inside the body below its top (" + std::to_string(result.components.size()) +
+             " air components, all touching the sides or the superior face of the image)";
+    } else if (largestInside->decision == Decision::TooSmall) {
+      what = "the largest air component inside the body is " + Ml(largestInside->volumeMl) + " (a colon needs >= " +
+             Ml(options.minColonVolumeMl) + ")";
+      const std::size_t top = std::count_if(result.components.begin(), result.components.end(), [](const AirComponent& c) {
+        return c.decision == Decision::AtSuperiorBorder && c.volumeMl >= 1.0;
+      });
+      if (top) what += "; " + std::to_string(top) + " larger than 1 ml at the superior face of the image were taken for lung";
+    } else {
+      std::size_t big = 0;
+      for (const AirComponent& c : result.components) big += c.decision == Decision::TooThick || c.decision == Decision::NotElongated;
+      what = std::to_string(big) + " air component" + (big == 1 ? "" : "s") + " inside the body of >= " +
+             Ml(options.minColonVolumeMl) + ", none colon-like: the largest, " + Ml(largestInside->volumeMl) +
+             ", has " + largestInside->reason;
+    }
+    throw NoColonFound("no distended colon found: " + what);
+  }
+  std::vector<std::uint32_t>().swap(labels);
+  lap("shape analysis, cavity filling, depth");
+
+  // 4. Topology: grow a ball from the deepest voxel, deepest first.
+  Volume<float> priority;
+  priority.size = colonCrop.mask.size;
+  priority.voxels = std::move(colonDepth);
+  const std::size_t seed = static_cast<std::size_t>(
+      std::max_element(priority.voxels.begin(), priority.voxels.end()) - priority.voxels.begin());
+  Volume<unsigned char> ball;
+  {
+    StepProgress step(progress, 0.62, 0.97);
+    ball = GrowTopologicalBall(colonCrop.mask, priority, seed, step, &result.growth);
+  }
+  result.handleVoxelsRemoved = result.growth.refusedVoxels;
+  lap("topology-preserving growth");
+
+  result.label.size = ct.size;
+  result.label.spacing = ct.spacing;
+  result.label.origin = ct.origin;
+  result.label.direction = ct.direction;
+  result.label.Allocate(0);
+  const auto& first = colonCrop.first;
+  for (std::size_t k = 1; k + 1 < ball.size[2]; ++k)
+    for (std::size_t j = 1; j + 1 < ball.size[1]; ++j) {
+      const unsigned char* row = &ball.At(1, j, k);
+      unsigned char* out = &result.label.At(first[0], first[1] + j - 1, first[2] + k - 1);
+      std::copy(row, row + ball.size[0] - 2, out);
+    }
+  result.lumenVolumeMl = double(result.growth.grownVoxels) * voxelMl;
+  lap("label map");
+  progress.Report(1.0);
+  return result;
+}
+
+}  // namespace colonmap::segmentation

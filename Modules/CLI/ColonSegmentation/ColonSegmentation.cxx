@@ -1,0 +1,96 @@
+// ColonSegmentation: CT (or cleansed CT) -> colon lumen label map, one component of genus 0
+// (issue 4, DESIGN 2.1). Thin: options from the XML, the math in Libs/Segmentation, files
+// through Libs/IO.
+#include "CLI/Format.h"
+#include "CLI/ModuleRunner.h"
+#include "Core/Error.h"
+#include "IO/ImageIO.h"
+#include "Segmentation/LumenSegmentation.h"
+
+#include <string>
+
+extern "C" const char XMLModuleDescription[];
+
+namespace {
+
+using namespace colonmap;
+using namespace colonmap::segmentation;
+
+void Run(cli::ModuleContext& ctx) {
+  const std::string input = ctx.args.GetString("inputCT");
+  const std::string output = ctx.args.GetString("outputLabel");
+  if (input.empty()) throw Error("parameter inputCT: an input CT is required");
+  if (output.empty()) throw Error("parameter outputLabel: an output label map is required");
+  SegmentationOptions options;
+  options.airThresholdHU = ctx.args.GetDouble("airThreshold");
+  options.minColonVolumeMl = ctx.args.GetDouble("minColonVolume");
+  options.maxColonRadiusMm = ctx.args.GetDouble("maxColonRadius");
+  options.minElongation = ctx.args.GetDouble("minElongation");
+  // Staged first, so that an unwritable output fails before the work.
+  const std::string staged = ctx.outputs.Stage(output, "output label map");
+  ctx.progress.Plan({{"Reading", 2}, {"Segmentation", 10}, {"Writing", 1}});
+
+  ctx.progress.StartStage("Reading", "reading the CT");
+  const Volume<short> ct = io::ReadImage<short>(input, "input CT");
+  ctx.progress.EndStage();
+
+  ctx.progress.StartStage("Segmentation", "air components, colon selection, topology-preserving growth");
+  LumenSegmentation s;
+  try {
+    s = SegmentColonLumen(ct, options, ctx.progress);
+  } catch (const NoColonFound& e) {
+    throw InputError("input CT", input, e.what());
+  }
+  ctx.progress.EndStage();
+
+  ctx.progress.StartStage("Writing", "writing the label map");
+  io::WriteImage(s.label, staged, "output label map");
+  ctx.progress.EndStage();
+
+  // Report: the kept component, then every dropped one of 1 ml or more (the rest counted).
+  const auto describe = [](const AirComponent& c) {
+    std::string line = cli::FormatFixed(c.volumeMl, 1) + " ml at LPS (" + cli::FormatFixed(c.centroid.x(), 0) + ", " +
+                       cli::FormatFixed(c.centroid.y(), 0) + ", " + cli::FormatFixed(c.centroid.z(), 0) + ")";
+    if (c.maxRadiusMm >= 0.0)
+      line += ", inscribed radius " + cli::FormatFixed(c.maxRadiusMm, 1) + " mm, elongation " +
+              cli::FormatFixed(c.elongation, 1);
+    return line + ": " + DecisionName(c.decision) + ", " + c.reason;
+  };
+  std::size_t tiny = 0;
+  for (const AirComponent& c : s.components) {
+    if (c.decision == Decision::Colon || c.volumeMl >= 1.0)
+      ctx.progress.Note("ColonSegmentation: air component " + describe(c));
+    else
+      ++tiny;
+  }
+  if (tiny) ctx.progress.Note("ColonSegmentation: " + std::to_string(tiny) + " further air components under 1 ml dropped");
+  std::string reasons, keys;  // for people, and a space-free form for the return parameter
+  const std::pair<Decision, const char*> kinds[6] = {{Decision::OutsideBody, "outsideBody"}, {Decision::AtSuperiorBorder, "atSuperiorBorder"}, {Decision::TooSmall, "tooSmall"},
+                                                    {Decision::TooThick, "tooThick"}, {Decision::NotElongated, "notElongated"},
+                                                    {Decision::NotLargest, "notLargest"}};
+  for (const auto& [d, key] : kinds) {
+    if (!reasons.empty()) reasons += ", ", keys += ",";
+    reasons += std::string(DecisionName(d)) + " " + std::to_string(s.Dropped(d));
+    keys += std::string(key) + ":" + std::to_string(s.Dropped(d));
+  }
+  ctx.progress.Note("ColonSegmentation: lumen " + cli::FormatFixed(s.lumenVolumeMl, 1) + " ml, 1 component kept, " +
+                    std::to_string(s.components.size() - 1) + " dropped (" + reasons + "); " +
+                    std::to_string(s.cavityVoxelsFilled) + " cavity voxels filled, " +
+                    std::to_string(s.handleVoxelsRemoved) + " voxels left out to cut handles (growth " +
+                    cli::FormatFixed(s.growth.seconds, 2) + " s)");
+  std::string steps;
+  for (const auto& [step, seconds] : s.stepSeconds) steps += (steps.empty() ? "" : ", ") + step + " " + cli::FormatFixed(seconds, 2) + " s";
+  ctx.progress.Note("ColonSegmentation: times: " + steps);
+  ctx.SetReturn("lumenVolume", cli::FormatFixed(s.lumenVolumeMl, 1));
+  ctx.SetReturn("componentsKept", "1");
+  ctx.SetReturn("componentsDropped", std::to_string(s.components.size() - 1));
+  ctx.SetReturn("droppedReasons", keys);
+  ctx.SetReturn("cavityVoxelsFilled", std::to_string(s.cavityVoxelsFilled));
+  ctx.SetReturn("handleVoxelsRemoved", std::to_string(s.handleVoxelsRemoved));
+}
+
+}  // namespace
+
+COLONMAP_CLI_EXPORT int ModuleEntryPoint(int argc, char* argv[]) {
+  return colonmap::cli::RunModule("ColonSegmentation", XMLModuleDescription, argc, argv, &Run);
+}
