@@ -1,0 +1,81 @@
+// ColonSurface: lumen label map (+ CT) -> closed colon surface with mean curvature (issue 4).
+// Thin: arguments, reading, Libs/Surface, writing.
+#include "CLI/Format.h"
+#include "CLI/ModuleRunner.h"
+#include "Core/Error.h"
+#include "IO/ImageIO.h"
+#include "IO/MeshIO.h"
+#include "Surface/SurfaceReconstruction.h"
+
+#include <optional>
+
+extern "C" const char XMLModuleDescription[];
+
+namespace {
+
+using namespace colonmap;
+
+void Run(cli::ModuleContext& ctx) {
+  surface::SurfaceOptions options;
+  options.targetFaces = ctx.args.GetInt("targetFaces");
+  options.labelValue = static_cast<double>(ctx.args.GetInt("labelValue"));
+  options.isoValueHU = ctx.args.GetDouble("isoValue");
+  const std::string labelPath = ctx.args.GetString("inputLabel");
+  const std::string ctPath = ctx.args.GetString("referenceCT");
+  const std::string outPath = ctx.args.GetString("outputSurface");
+  if (labelPath.empty()) throw Error("input label map: no file given");
+  if (outPath.empty()) throw Error("output surface: no file given");
+  ctx.progress.Plan({{"Reading", 2}, {"Surface", 10}, {"Writing", 1}});
+
+  ctx.progress.StartStage("Reading", "label map and reference CT");
+  // Any integer label type is read as float (exact for labels up to 2^24).
+  const Volume<float> label = io::ReadImage<float>(labelPath, "input label map");
+  ctx.progress.Report(0.5);
+  std::optional<Volume<short>> ct;
+  if (!ctPath.empty()) ct = io::ReadImage<short>(ctPath, "reference CT");
+  ctx.progress.EndStage();
+
+  ctx.progress.StartStage("Surface", ct ? "iso-surface of the CT near the label boundary" : "surface of the label");
+  surface::SurfaceResult result;
+  try {
+    result = surface::ReconstructSurface(label, ct ? &*ct : nullptr, options, ctx.progress);
+  } catch (const Cancelled&) {
+    throw;
+  } catch (const Error& e) {
+    // Name the input file in the message.
+    const std::string what = e.what();
+    if (what.rfind("reference CT", 0) == 0) throw InputError("reference CT", ctPath, what.substr(what.find(':') + 2));
+    throw InputError("input label map", labelPath, what.substr(what.find(':') + 2));
+  }
+  ctx.progress.EndStage();
+
+  ctx.progress.StartStage("Writing", "surface file");
+  io::WriteMesh(result.mesh, ctx.outputs.Stage(outPath, "output surface"), "output surface");
+  ctx.progress.EndStage();
+
+  const surface::TopologyReport& t = result.topology;
+  ctx.SetReturn("faces", std::to_string(t.faces));
+  ctx.SetReturn("eulerCharacteristic", std::to_string(t.euler));
+  ctx.SetReturn("droppedComponents", std::to_string(result.droppedComponents.size()));
+  std::string quality;
+  for (const std::string& p : result.problems) quality += (quality.empty() ? "" : "; ") + p;
+  // One word (hosts and scripts read `name = value`); the details are in the stdout note.
+  ctx.SetReturn("topology", result.problems.empty() ? "closed-genus-0" : "defective");
+
+  std::string dropped;
+  for (long n : result.droppedComponents) dropped += (dropped.empty() ? "" : ", ") + std::to_string(n);
+  ctx.progress.Note("ColonSurface: " + std::to_string(result.lumenVoxels) + " lumen voxels, " +
+                    (result.usedCT ? "CT iso-value " + cli::FormatNumber(options.isoValueHU) + " HU" : "label only") +
+                    ", contour " + std::to_string(result.contourFaces) + " faces; " + t.Summary());
+  for (const std::string& n : result.notes) ctx.progress.Note("ColonSurface: " + n);
+  if (!result.droppedComponents.empty())
+    ctx.progress.Note("ColonSurface: dropped " + std::to_string(result.droppedComponents.size()) +
+                      " smaller component(s) of " + dropped + " faces");
+  if (!result.problems.empty()) ctx.progress.Note("ColonSurface: WARNING: topology problems: " + quality);
+}
+
+}  // namespace
+
+COLONMAP_CLI_EXPORT int ModuleEntryPoint(int argc, char* argv[]) {
+  return colonmap::cli::RunModule("ColonSurface", XMLModuleDescription, argc, argv, &Run);
+}
