@@ -9,17 +9,6 @@
 namespace colonmap::cleansing {
 namespace {
 
-// Scales a sub-range of the caller's progress.
-class SubProgress : public ProgressSink {
- public:
-  SubProgress(ProgressSink& parent, double from, double to) : parent_(parent), from_(from), to_(to) {}
-  void Report(double f) override { parent_.Report(from_ + (to_ - from_) * f); }
-
- private:
-  ProgressSink& parent_;
-  double from_, to_;
-};
-
 // The index-space axis (0,1,2) and sign closest to a physical direction.
 void DominantAxis(const Volume<short>& ct, const Eigen::Vector3d& down, int& axis, int& sign) {
   const Eigen::Vector3d inIndex = ct.direction.transpose() * down;
@@ -32,11 +21,7 @@ void DominantAxis(const Volume<short>& ct, const Eigen::Vector3d& down, int& axi
 CleansingResult Cleanse(const Volume<short>& ct, const CleansingParameters& p, ProgressSink& progress) {
   CleansingResult r;
   r.cleansed = ct;
-  r.tagged.size = ct.size;
-  r.tagged.spacing = ct.spacing;
-  r.tagged.origin = ct.origin;
-  r.tagged.direction = ct.direction;
-  r.tagged.Allocate(0);
+  r.tagged = ct.Like<unsigned char>(0);
 
   SubProgress find(progress, 0.0, 0.6);
   const TaggedMaterial tagged = FindTaggedMaterial(ct, p, find);

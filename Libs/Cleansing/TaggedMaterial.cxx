@@ -59,11 +59,7 @@ struct Region {
 
 TaggedMaterial FindTaggedMaterial(const Volume<short>& ct, const CleansingParameters& p, ProgressSink& progress) {
   TaggedMaterial result;
-  result.core.size = ct.size;
-  result.core.spacing = ct.spacing;
-  result.core.origin = ct.origin;
-  result.core.direction = ct.direction;
-  result.core.Allocate(0);
+  result.core = ct.Like<unsigned char>(0);
   const long reach = std::max(1, p.partialVolumeVoxels);
   std::vector<unsigned char> visited(ct.NumberOfVoxels(), 0);
   std::vector<Region> flat;

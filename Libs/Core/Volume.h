@@ -24,6 +24,18 @@ struct Volume {
   T& At(std::size_t i, std::size_t j, std::size_t k) { return voxels[Offset(i, j, k)]; }
   const T& At(std::size_t i, std::size_t j, std::size_t k) const { return voxels[Offset(i, j, k)]; }
 
+  // An image of pixel type U on the same grid, every voxel set to `value`.
+  template <typename U>
+  Volume<U> Like(const U& value = U()) const {
+    Volume<U> v;
+    v.size = size;
+    v.spacing = spacing;
+    v.origin = origin;
+    v.direction = direction;
+    v.Allocate(value);
+    return v;
+  }
+
   // Continuous index -> LPS mm.
   Eigen::Vector3d IndexToPhysical(const Eigen::Vector3d& index) const {
     return origin + direction * spacing.cwiseProduct(index);

@@ -111,12 +111,7 @@ Volume<short> SynthesizeCT(const ScanGeometry& scan, const PhantomOptions& optio
 
 Volume<unsigned char> LumenLabel(const ScanGeometry& scan, const PhantomOptions& options, ProgressSink& progress) {
   const Volume<short> geometry = CTGrid(options);
-  Volume<unsigned char> label;
-  label.size = geometry.size;
-  label.spacing = geometry.spacing;
-  label.origin = geometry.origin;
-  label.direction = geometry.direction;
-  label.Allocate(0);
+  Volume<unsigned char> label = geometry.Like<unsigned char>(0);
   const TubeLocator tube(scan, options.tissue.wallThicknessMm, 1.0);
   ForEachVoxel(geometry, progress, [&](long i, long j, long k) {
     const Eigen::Vector3d p = geometry.IndexToPhysical(Eigen::Vector3d(double(i), double(j), double(k)));

@@ -16,17 +16,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Maps a sub-range of the caller's progress onto a step's own 0..1.
-class StepProgress : public ProgressSink {
- public:
-  StepProgress(ProgressSink& parent, double from, double to) : parent_(parent), from_(from), to_(to) {}
-  void Report(double f) override { parent_.Report(from_ + (to_ - from_) * std::clamp(f, 0.0, 1.0)); }
-
- private:
-  ProgressSink& parent_;
-  double from_, to_;
-};
-
 std::string Fixed(double value, int decimals) {
   std::ostringstream s;
   s.imbue(std::locale::classic());
@@ -124,7 +113,7 @@ LumenSegmentation SegmentColonLumen(const Volume<short>& ct, const SegmentationO
   // 1. Air.
   std::vector<unsigned char> air(count);
   {
-    StepProgress step(progress, 0.0, 0.04);
+    SubProgress step(progress, 0.0, 0.04);
     const short threshold = static_cast<short>(std::ceil(options.airThresholdHU));  // HU < t <=> HU < ceil(t) for integers
     const std::size_t slice = n0 * n1;
     for (std::size_t k = 0; k < n2; ++k) {
@@ -144,7 +133,7 @@ LumenSegmentation SegmentColonLumen(const Volume<short>& ct, const SegmentationO
   std::vector<std::uint32_t> labels;
   std::uint32_t labelCount = 0;
   {
-    StepProgress step(progress, 0.04, 0.35);
+    SubProgress step(progress, 0.04, 0.35);
     labelCount = detail::LabelComponents26(grid, air.data(), labels, step);
   }
   lap("threshold and components");
@@ -162,7 +151,7 @@ LumenSegmentation SegmentColonLumen(const Volume<short>& ct, const SegmentationO
     c.boxMax = {{0, 0, 0}};
   }
   {
-    StepProgress step(progress, 0.35, 0.45);
+    SubProgress step(progress, 0.35, 0.45);
     for (std::size_t k = 0; k < n2; ++k) {
       for (std::size_t j = 0; j < n1; ++j) {
         const std::uint32_t* row = &labels[ct.Offset(0, j, k)];
@@ -224,10 +213,10 @@ LumenSegmentation SegmentColonLumen(const Volume<short>& ct, const SegmentationO
       c.reason = "below " + Ml(options.minColonVolumeMl) + " (small-bowel gas or an isolated pocket)";
     } else {
       // Fill the cavities first: the depth (and the growth below) then sees the whole lumen.
-      StepProgress step(progress, 0.45 + 0.17 * analysed / toAnalyse,
+      SubProgress step(progress, 0.45 + 0.17 * analysed / toAnalyse,
                         0.45 + 0.17 * (analysed + double(c.voxels)) / toAnalyse);
       analysed += double(c.voxels);
-      StepProgress cropStep(step, 0.0, 0.1), fillStep(step, 0.1, 0.5), depthStep(step, 0.5, 1.0);
+      SubProgress cropStep(step, 0.0, 0.1), fillStep(step, 0.1, 0.5), depthStep(step, 0.5, 1.0);
       Crop crop = CropComponent(ct, labels, l, c, cropStep);
       const std::size_t before = std::count(crop.mask.voxels.begin(), crop.mask.voxels.end(), 1);
       detail::FillCavities6(crop.Grid(), crop.mask.voxels, fillStep);
@@ -298,17 +287,13 @@ LumenSegmentation SegmentColonLumen(const Volume<short>& ct, const SegmentationO
       std::max_element(priority.voxels.begin(), priority.voxels.end()) - priority.voxels.begin());
   Volume<unsigned char> ball;
   {
-    StepProgress step(progress, 0.62, 0.97);
+    SubProgress step(progress, 0.62, 0.97);
     ball = GrowTopologicalBall(colonCrop.mask, priority, seed, step, &result.growth);
   }
   result.handleVoxelsRemoved = result.growth.refusedVoxels;
   lap("topology-preserving growth");
 
-  result.label.size = ct.size;
-  result.label.spacing = ct.spacing;
-  result.label.origin = ct.origin;
-  result.label.direction = ct.direction;
-  result.label.Allocate(0);
+  result.label = ct.Like<unsigned char>(0);
   const auto& first = colonCrop.first;
   for (std::size_t k = 1; k + 1 < ball.size[2]; ++k)
     for (std::size_t j = 1; j + 1 < ball.size[1]; ++j) {

@@ -87,12 +87,7 @@ Volume<unsigned char> GrowTopologicalBall(const Volume<unsigned char>& domain, c
     }
   }
 
-  Volume<unsigned char> result;
-  result.size = domain.size;
-  result.spacing = domain.spacing;
-  result.origin = domain.origin;
-  result.direction = domain.direction;
-  result.Allocate(0);
+  Volume<unsigned char> result = domain.Like<unsigned char>(0);
   for (std::size_t v = 0; v < count; ++v) result.voxels[v] = state[v] == kGrown;
   if (statistics) {
     statistics->domainVoxels = domainVoxels;

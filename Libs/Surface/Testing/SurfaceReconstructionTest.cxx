@@ -254,8 +254,8 @@ TEST(SurfaceReconstruction, Cancels) {
 
 // Benchmark helper, not run by ctest: measures a surface file made by the ColonSurface module from
 // the seed-1 supine phantom (ColonSurfaceMakeTestData) against the true wall.
-//   COLONMAP_SURFACE_EVAL=surface.vtp COLONMAP_SURFACE_SPACING=0.7,0.7,1.0 \
-//     ColonMapSurfaceTests --gtest_also_run_disabled_tests --gtest_filter=*DISABLED_Evaluate*
+//   COLONMAP_SURFACE_EVAL=surface.vtp COLONMAP_SURFACE_SPACING=0.7,0.7,1.0
+//   ColonMapSurfaceTests --gtest_also_run_disabled_tests --gtest_filter=*DISABLED_Evaluate*
 TEST(SurfaceReconstruction, DISABLED_EvaluateFile) {
   const char* file = std::getenv("COLONMAP_SURFACE_EVAL");
   const char* spacing = std::getenv("COLONMAP_SURFACE_SPACING");

@@ -36,16 +36,6 @@ PhantomOptions OptionsFrom(const cli::Arguments& args) {
   return o;
 }
 
-// Reports a sub-range of the current stage to the module's progress (two CTs in one stage).
-class SubProgress : public ProgressSink {
- public:
-  SubProgress(ProgressSink& parent, double from, double to) : parent_(parent), from_(from), to_(to) {}
-  void Report(double f) override { parent_.Report(from_ + (to_ - from_) * f); }
-
- private:
-  ProgressSink& parent_;
-  double from_, to_;
-};
 
 json SummaryJson(const DilatationSummary& d) {
   return {{"mean", d.mean}, {"median", d.median}, {"p90", d.p90}, {"max", d.max}, {"faces", d.count}};
