@@ -10,23 +10,18 @@ import subprocess
 import sys
 import tempfile
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), *[".."] * 4, "Testing", "Python"))
+from colonmap_testing import Checks, return_parameters, run_program  # noqa: E402
+
 exe, phantom, data, shared = sys.argv[1:5]
-results = {"passed": 0, "failed": 0}
+checks = Checks()
+check = checks.check
 
 
-def check(condition, message):
-    results["passed" if condition else "failed"] += 1
-    if not condition:
-        print("FAIL: " + message)
-    return condition
+run = run_program
 
 
-def run(*args):
-    return subprocess.run(list(args), capture_output=True, text=True, stdin=subprocess.DEVNULL)
-
-
-def returns(path):
-    return dict(re.findall(r"^(\w+) = (.*)$", open(path).read(), re.M)) if os.path.exists(path) else {}
+returns = return_parameters
 
 
 work = tempfile.mkdtemp(prefix="colonmap-cleansing-test-")
@@ -77,5 +72,4 @@ try:
 finally:
     shutil.rmtree(work, ignore_errors=True)
 
-print(f"{results['passed']} passed, {results['failed']} failed")
-sys.exit(1 if results["failed"] else 0)
+sys.exit(checks.finish())

@@ -13,19 +13,17 @@ import tempfile
 
 import jsonschema
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), *[".."] * 4, "Testing", "Python"))
+from colonmap_testing import Checks, return_parameters, run_program  # noqa: E402
+
 exe, shared = sys.argv[1], sys.argv[2]
 schema = json.load(open(os.path.join(shared, "schemas", "markups-schema-v1.0.3.json")))
-results = {"passed": 0, "failed": 0}
-
-
-def check(condition, message):
-    results["passed" if condition else "failed"] += 1
-    if not condition:
-        print("FAIL: " + message)
+checks = Checks()
+check = checks.check
 
 
 def run(*args):
-    return subprocess.run([exe, *args], capture_output=True, text=True, stdin=subprocess.DEVNULL)
+    return run_program(exe, *args)
 
 
 work = tempfile.mkdtemp(prefix="colonmap-phantom-test-")
@@ -90,5 +88,4 @@ try:
 finally:
     shutil.rmtree(work, ignore_errors=True)
 
-print(f"{results['passed']} passed, {results['failed']} failed")
-sys.exit(1 if results["failed"] else 0)
+sys.exit(checks.finish())

@@ -13,19 +13,17 @@ import subprocess
 import sys
 import tempfile
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), *[".."] * 4, "Testing", "Python"))
+from colonmap_testing import Checks, return_parameters, run_program  # noqa: E402
+
 exe, phantom, shared = sys.argv[1], sys.argv[2], sys.argv[3]
 real = os.path.join(shared, "data", "totalseg-example-ct")
-results = {"passed": 0, "failed": 0}
-
-
-def check(condition, message):
-    results["passed" if condition else "failed"] += 1
-    if not condition:
-        print("FAIL: " + message)
+checks = Checks()
+check = checks.check
 
 
 def run(*args):
-    return subprocess.run([exe, *args], capture_output=True, text=True, stdin=subprocess.DEVNULL)
+    return run_program(exe, *args)
 
 
 def read_nrrd(path):
@@ -43,8 +41,7 @@ def read_nrrd(path):
     return header, body
 
 
-def returns(path):
-    return dict(re.findall(r"^(\w+) = (.*)$", open(path).read(), re.M))
+returns = return_parameters
 
 
 work = tempfile.mkdtemp(prefix="colonmap-segmentation-test-")
@@ -118,5 +115,4 @@ try:
 finally:
     shutil.rmtree(work, ignore_errors=True)
 
-print(f"{results['passed']} passed, {results['failed']} failed")
-sys.exit(1 if results["failed"] else 0)
+sys.exit(checks.finish())
