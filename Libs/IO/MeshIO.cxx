@@ -244,6 +244,9 @@ PolylineSet ReadPolylines(const std::string& path, const std::string& what) {
   }
   if (set.lines.empty()) throw InputError(what, path, "holds no polylines");
   ReadArrays(data->GetPointData(), set.pointData, data->GetNumberOfPoints());
+  // Per-line arrays (SegmentId, IsCut, ...): the cells are the lines.
+  if (data->GetNumberOfCells() == data->GetNumberOfLines())
+    ReadArrays(data->GetCellData(), set.cellData, data->GetNumberOfCells());
   return set;
 }
 
