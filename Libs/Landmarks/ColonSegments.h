@@ -1,0 +1,54 @@
+#pragma once
+// Opens the closed colon surface at both ends and splits it at the four flexures into the five
+// segments A, T, D, S, R, each a topological cylinder, along mesh edges (no new vertices).
+//
+// Method: every face gets the arc length (from the anal end) of the centreline point nearest
+// to its centroid, and from it a band: anal cap, R, S, D, T, A, cecal cap (cuts at capMm from
+// each end of the centreline and at the flexures). Nearest-point arc length is the plane
+// perpendicular to the centreline, restricted to the part of the surface that belongs to that
+// stretch of centreline: a plane that meets the colon again elsewhere cuts nothing there.
+// Where loops of the colon touch, a few faces can take a far centreline point; so the labels
+// are cleaned until each band is one edge-connected piece (islands join their neighbours'
+// band) and the faces of a band are one fan at every vertex (no pinched, non-manifold
+// boundary). The caps are dropped; what remains is checked: each segment and the opened colon
+// must be one component with Euler characteristic 0 and two boundary loops, or an Error says
+// which one failed.
+#include "Core/Cancel.h"
+#include "Core/TriangleMesh.h"
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace colonmap::landmarks {
+
+struct SegmentOptions {
+  double capMm = 8.0;  // the ends are cut this far inside the ends of the centreline
+};
+
+struct ColonSegments {
+  // The opened colon: point data SegmentId (int 0..4 = A,T,D,S,R; a vertex on a cut takes the
+  // segment of most of its faces, ties to the anal side), CenterlineArcLength, and the input's
+  // point arrays; cell data SegmentId.
+  TriangleMesh open;
+  std::array<TriangleMesh, 5> segment;  // by SegmentId; point data as `open`
+  // For each segment, the index in `open` of each of its vertices.
+  std::array<std::vector<int>, 5> openVertex;
+  int relabelledFaces = 0;  // faces moved to another band by the cleaning
+};
+
+// closed: a closed, connected, manifold surface (normals into the lumen). centerline: samples
+// from the anal end to the cecum, arc their arc length; flexureArc: HF, SF, DSJ, RSJ.
+ColonSegments SplitColon(const TriangleMesh& closed, const Eigen::MatrixXd& centerline, const Eigen::VectorXd& arc,
+                         const std::array<double, 4>& flexureArc, const SegmentOptions& options,
+                         ProgressSink& progress);
+
+// Arc length of the nearest centreline point of each row of P (clamped to [0, length]).
+Eigen::VectorXd NearestArcLength(const Eigen::MatrixXd& P, const Eigen::MatrixXd& centerline);
+
+inline const char* SegmentName(int id) {
+  static const char* names[] = {"A", "T", "D", "S", "R"};
+  return names[id];
+}
+
+}  // namespace colonmap::landmarks
