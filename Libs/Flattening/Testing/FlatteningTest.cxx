@@ -9,6 +9,7 @@
 #include "Flattening/HarmonicFunction.h"
 #include "Flattening/RasterizeFlatImage.h"
 #include "Flattening/ShortestCutPath.h"
+#include "Flattening/SplitBoundaryChords.h"
 #include "PhantomSegments.h"
 #include "Surface/MeanCurvature.h"
 #include "Surface/MeshTopology.h"
@@ -350,3 +351,33 @@ TEST(Flattening, PhantomTruthSegmentsHaveNoFlipsAndSmallDistortion) {
 }
 
 }  // namespace
+
+// A face with all three corners on an end loop collapses under f1's Dirichlet values unless it
+// is split; after the split the flat map has no zero-area or flipped face.
+TEST(Flattening, BoundaryEarsAreSplitAndKeepTheirArea) {
+  const int n = 12, m = 6;
+  TriangleMesh t = Tube([](double) { return 10.0; }, 30.0, n, m);
+  // An ear on the top loop: a face over the boundary edge top(1) -> top(0) with its tip outside.
+  const int top = (m - 1) * n, tip = static_cast<int>(t.V.rows());
+  t.V.conservativeResize(tip + 1, 3);
+  t.V.row(tip) << 13.0 * std::cos(kPi / n), 13.0 * std::sin(kPi / n), 32.0;
+  auto& arc = t.pointData.at("CenterlineArcLength").values;
+  arc.conservativeResize(tip + 1, 1);
+  arc(tip) = 32.0;
+  t.F.conservativeResize(t.F.rows() + 1, 3);
+  t.F.row(t.F.rows() - 1) << top + 1, top, tip;
+  ASSERT_EQ(surface::BoundaryLoops(t.F).size(), 2u);
+  NullProgress np;
+  {  // Unsplit, the ear collapses: its flat area is zero.
+    const FlatteningResult r = ConformalFlattening(t.V, t.F, StraightPath(n, m), arc.col(0), FlatteningOptions(), np);
+    EXPECT_GE(Stats(r).flipped, 1);
+  }
+  const Eigen::Index faces = t.F.rows();
+  EXPECT_EQ(SplitBoundaryChords(t), 1);  // the ear's base top(0)-top(1) is the only chord
+  EXPECT_EQ(t.F.rows(), faces + 2);
+  EXPECT_EQ(surface::EulerCharacteristic(t.F), 0);
+  EXPECT_EQ(surface::BoundaryLoops(t.F).size(), 2u);
+  EXPECT_NEAR(t.pointData.at("CenterlineArcLength").values(tip + 1, 0), 30.0, 1e-12);
+  const FlatteningResult r = Flatten(t, StraightPath(n, m));
+  EXPECT_EQ(Stats(r).flipped, 0);
+}

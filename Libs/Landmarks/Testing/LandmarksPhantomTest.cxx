@@ -108,7 +108,9 @@ TEST_P(LandmarksOnPhantom, MatchesTruth) {
     std::printf("[%s seed %d] segment %s %s%s: %.0f%% within 8 mm of the true band, confidence %.2f\n", pname, seed,
                 SegmentName(band.segment), band.name.c_str(), band.isCut ? " (cut)" : "", 100 * frac, band.confidence);
     // The target is 90% for the cut in A, T, D; measured 88-100% on seeds 2 and 5.
-    if (band.isCut && band.segment <= 2) EXPECT_GT(frac, 0.8) << SegmentName(band.segment);
+    if (band.isCut && band.segment <= 2) {
+      EXPECT_GT(frac, 0.8) << SegmentName(band.segment);
+    }
   }
 }
 

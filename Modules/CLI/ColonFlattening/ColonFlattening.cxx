@@ -6,6 +6,7 @@
 #include "Core/Error.h"
 #include "Flattening/BeltramiCoefficient.h"
 #include "Flattening/ConformalFlattening.h"
+#include "Flattening/SplitBoundaryChords.h"
 #include "Flattening/CurvatureImagePng.h"
 #include "Flattening/FlatTextures.h"
 #include "Flattening/RasterizeFlatImage.h"
@@ -63,17 +64,6 @@ std::optional<Eigen::VectorXi> CutPathOf(const PolylineSet& taeniae, int id, con
   return std::nullopt;
 }
 
-// Progress of one step mapped into [lo, hi] of the current stage.
-class ScaledProgress : public ProgressSink {
- public:
-  ScaledProgress(ProgressSink& parent, double lo, double hi) : parent_(parent), lo_(lo), hi_(hi) {}
-  void Report(double f) override { parent_.Report(lo_ + (hi_ - lo_) * f); }
-
- private:
-  ProgressSink& parent_;
-  double lo_, hi_;
-};
-
 json Times(const std::vector<std::pair<std::string, double>>& times) {
   json j;
   for (const auto& [step, s] : times) j[step] = s;
@@ -128,7 +118,11 @@ void Run(cli::ModuleContext& ctx) {
       t0 = now;
       return s;
     };
-    const TriangleMesh mesh = io::ReadMesh(segPath, "segment " + X);
+    TriangleMesh mesh = io::ReadMesh(segPath, "segment " + X);
+    // Faces with all corners on an end loop would collapse under f1's fixed end values.
+    if (const int split = SplitBoundaryChords(mesh))
+      ctx.progress.Note("ColonFlattening: segment " + X + ": " + std::to_string(split) +
+                        " edges joining two end-loop vertices split at their midpoint");
     const double readSeconds = lap();
     ctx.progress.Report(0.1);
     Eigen::VectorXd arc;
@@ -145,7 +139,7 @@ void Run(cli::ModuleContext& ctx) {
         if (loops.size() != 2) throw Error("not a topological cylinder: " + std::to_string(loops.size()) + " boundary loops");
         path = ShortestCutPath(mesh.V, mesh.F, loops[0], loops[1]);
       }
-      ScaledProgress sub(ctx.progress, 0.1, 0.8);
+      SubProgress sub(ctx.progress, 0.1, 0.8);
       r = ConformalFlattening(mesh.V, mesh.F, *path, arc, options, sub);
     } catch (const Cancelled&) {
       throw;
