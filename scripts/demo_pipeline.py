@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """The main job on the built-in default input, with the stages that exist today: a phantom
-supine/prone pair, then per scan cleansing, lumen segmentation and surface reconstruction.
+supine/prone pair, then per scan cleansing, lumen segmentation, surface reconstruction,
+landmarks and conformal flattening.
 Each stage's outputs go to a subfolder of OUT named after the stage (DESIGN section 2.0);
 OUT/summary.json holds stage times, each module's return parameters and what is not built yet.
 
@@ -15,7 +16,7 @@ import sys
 import tempfile
 import time
 
-NOT_YET = ["landmarks", "flattening", "registration", "views", "report"]
+NOT_YET = ["registration", "views", "report"]
 
 
 def run_stage(cli, module, args, summary, key):
@@ -49,7 +50,7 @@ def main():
     summary = {"input": "ColonPhantom " + " ".join(phantom_options), "stages": {}, "notYetAvailable": NOT_YET}
     run_stage(cli, "ColonPhantom", ["--outputDirectory", os.path.join(out, "phantom")] + phantom_options,
               summary, "phantom")
-    for folder in ("cleansing", "segmentation", "surface"):
+    for folder in ("cleansing", "segmentation", "surface", "landmarks", "flattening"):
         os.makedirs(os.path.join(out, folder), exist_ok=True)
     for scan in ("supine", "prone"):
         ct = os.path.join(out, "phantom", f"{scan}.nrrd")
@@ -64,8 +65,12 @@ def main():
             break
         if not run_stage(cli, "ColonSurface", [lumen, surface, "--referenceCT", cleansed], summary,
                          f"surface {scan}"):
-            summary["notYetAvailable"] = ["surface"] + NOT_YET
             break
+        landmarks = os.path.join(out, "landmarks", scan)
+        if not run_stage(cli, "ColonLandmarks", [surface, landmarks], summary, f"landmarks {scan}"):
+            break
+        run_stage(cli, "ColonFlattening", [landmarks, os.path.join(out, "flattening", scan)], summary,
+                  f"flattening {scan}")
     summary["totalSeconds"] = round(sum(s["seconds"] for s in summary["stages"].values()), 2)
     with open(os.path.join(out, "summary.json"), "w") as f:
         json.dump(summary, f, indent=2)
