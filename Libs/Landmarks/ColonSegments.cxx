@@ -69,6 +69,26 @@ FaceAdjacency BuildAdjacency(const Eigen::MatrixXi& F, Eigen::Index nV) {
   return adj;
 }
 
+// Straightens the cuts: a face with two or three edge neighbours in one other band (an "ear"
+// sticking out of its band, as assigning whole faces by centroid leaves) joins that band. Ears
+// would put three cut vertices on one face, which collapses in the flattening (f1 is fixed on
+// the cut loops).
+int SmoothCuts(const FaceAdjacency& adj, std::vector<int>& band) {
+  int moved = 0;
+  for (std::size_t f = 0; f < band.size(); ++f) {
+    const auto& n = adj.next[f];
+    for (int k = 0; k < 3; ++k) {
+      const int a = n[k], b = n[(k + 1) % 3];
+      if (a >= 0 && b >= 0 && band[a] == band[b] && band[a] != band[f]) {
+        band[f] = band[a];
+        ++moved;
+        break;
+      }
+    }
+  }
+  return moved;
+}
+
 // Moves every non-largest edge-connected piece of each band to the band it borders most.
 int MergeIslands(const FaceAdjacency& adj, std::vector<int>& band) {
   const int m = static_cast<int>(band.size());
@@ -190,7 +210,7 @@ ColonSegments SplitColon(const TriangleMesh& closed, const Eigen::MatrixXd& cent
   progress.Report(0.5);
   ColonSegments out;
   for (int it = 0; it < 50; ++it) {
-    const int moved = MergeIslands(adj, band) + FixPinches(adj, band);
+    const int moved = SmoothCuts(adj, band) + MergeIslands(adj, band) + FixPinches(adj, band);
     out.relabelledFaces += moved;
     if (moved == 0) break;
   }

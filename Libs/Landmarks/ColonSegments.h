@@ -7,6 +7,8 @@
 // each end of the centreline and at the flexures). Nearest-point arc length is the plane
 // perpendicular to the centreline, restricted to the part of the surface that belongs to that
 // stretch of centreline: a plane that meets the colon again elsewhere cuts nothing there.
+// Faces sticking out of their band by two edges (ears of the jagged cut) join the band around
+// them, so that no face has all three corners on a cut.
 // Where loops of the colon touch, a few faces can take a far centreline point; so the labels
 // are cleaned until each band is one edge-connected piece (islands join their neighbours'
 // band) and the faces of a band are one fan at every vertex (no pinched, non-manifold

@@ -86,6 +86,20 @@ TEST_P(LandmarksOnPhantom, MatchesTruth) {
     EXPECT_EQ(t.components, 1) << SegmentName(s);
     EXPECT_EQ(t.euler, 0) << SegmentName(s);
     EXPECT_EQ(t.boundaryLoops, 2) << SegmentName(s);
+    // No ears: a face with two edges on a cut would have three corners on it, and collapse in
+    // the flattening (where f1 is fixed on the cut loops).
+    const Eigen::MatrixXi& F = r.segments.segment[s].F;
+    std::map<std::pair<int, int>, int> edges;
+    for (Eigen::Index f = 0; f < F.rows(); ++f)
+      for (int k = 0; k < 3; ++k) ++edges[{std::min(F(f, k), F(f, (k + 1) % 3)), std::max(F(f, k), F(f, (k + 1) % 3))}];
+    int ears = 0;
+    for (Eigen::Index f = 0; f < F.rows(); ++f) {
+      int open = 0;
+      for (int k = 0; k < 3; ++k)
+        open += edges[{std::min(F(f, k), F(f, (k + 1) % 3)), std::max(F(f, k), F(f, (k + 1) % 3))}] == 1;
+      ears += open >= 2;
+    }
+    EXPECT_EQ(ears, 0) << SegmentName(s);
   }
   const surface::TopologyReport t = surface::AnalyzeTopology(r.segments.open.F);
   EXPECT_EQ(t.euler, 0);
