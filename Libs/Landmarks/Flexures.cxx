@@ -93,8 +93,17 @@ Flexures FindFlexures(const Eigen::MatrixXd& P, const Eigen::VectorXd& arc, cons
   const int dsj = leave(sf - static_cast<int>(std::round(o.splenicBendMm / step)), -1, -up, 0, o.descendingExitDeg);
   if (dsj < 0) fail("no end of the descending colon below the splenic flexure");
   found += ", DSJ at " + Mm(arc(dsj));
-  // RSJ: the rectum rises from the anus; it ends where the colon turns away from +z.
-  const int rsj = leave(static_cast<int>(std::round(o.minRectumMm / step)), +1, up, dsj, o.rectumExitDeg);
+  // RSJ: the rectum rises from the anus; it ends where the colon turns away from +z. The anal
+  // canal itself leans (40-55 degrees on the phantom), so the walk starts at the rectum's most
+  // vertical point within rectumSearchMm of the anal end, not at a fixed distance.
+  int vertical = static_cast<int>(std::round(o.minRectumMm / step));
+  double bestCos = -2.0;
+  for (int i = 0; i < n && arc(i) <= o.rectumSearchMm && i < dsj; ++i) {
+    const Eigen::RowVector3d t = P.row(std::min(i + w, n - 1)) - P.row(std::max(i - w, 0));
+    const double c = t.norm() > 0 ? t.dot(up) / t.norm() : -2.0;
+    if (c > bestCos) { bestCos = c; vertical = i; }
+  }
+  const int rsj = leave(vertical, +1, up, dsj, o.rectumExitDeg);
   if (rsj < 0) fail("the rectum does not turn below the descending-sigmoid junction");
 
   Flexures f;

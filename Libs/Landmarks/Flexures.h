@@ -13,7 +13,8 @@
 //         the exit angle (it must lie on the cecum side of SF);
 //   DSJ = going from SF (past splenicBendMm) down the descending colon, the first point where
 //         the direction leaves -z by more than the exit angle;
-//   RSJ = going from the anal end (past minRectumMm) up the rectum, the first point where the
+//   RSJ = going up the rectum from its most vertical point (within rectumSearchMm of the anal
+//         end; the anal canal leans), the first point where the
 //         direction leaves +z by more than the exit angle (before the DSJ).
 // The phantom check (Testing/LandmarksPhantomTest) measures these against the truth.
 // Anything missing or out of order is an Error saying what was found.
@@ -34,7 +35,8 @@ struct FlexureOptions {
   double rectumExitDeg = 45.0;
   double splenicBendMm = 60.0;  // skip this much below SF before looking for the DSJ
   double cecumSkipMm = 30.0;    // and this much of the cecum before looking for the HF
-  double minRectumMm = 40.0;
+  double minRectumMm = 40.0;     // where the RSJ walk starts when no vertical stretch is found
+  double rectumSearchMm = 100.0;  // the RSJ walk starts at the most vertical point this near the anus
 };
 
 struct Flexures {
