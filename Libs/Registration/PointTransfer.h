@@ -1,0 +1,69 @@
+#pragma once
+// Carrying points across a registration (ColonTransferPoints, DESIGN §2.0, §2.4): a point is
+// projected to the nearest point of the source wall (closest point on the nearest triangle),
+// that foot is sent across with the per-vertex map (barycentric combination of the images of the
+// triangle's three vertices), snapped to the nearest point of the target wall, and the point's
+// signed offset along the source normal is re-applied along the target normal (a polyp tip or a
+// point in the lumen keeps its height above the wall). VTK (vtkStaticCellLocator) only in the .cxx.
+#include "Core/TriangleMesh.h"
+
+#include <Eigen/Core>
+
+#include <memory>
+#include <string>
+
+namespace colonmap::registration {
+
+struct TransferredPoint {
+  Eigen::Vector3d position;   // on the target (plus the re-applied normal offset)
+  Eigen::Vector3d sourceFoot; // nearest source wall point
+  Eigen::Vector3d targetFoot; // its image on the target wall
+  double offset = 0.0;        // signed distance from the source wall along its normal (mm)
+  int sourceFace = -1;
+  Eigen::Vector3d sourceBary{1, 0, 0};  // of sourceFoot in sourceFace
+  int targetFace = -1;
+  Eigen::Vector3d targetBary{1, 0, 0};  // of targetFoot in targetFace
+  int segment = -1;           // SegmentId of the foot's nearest vertex (-1 without the array)
+  double dilatation = 1.0;    // K of the source face (1 without the array)
+  double uncertaintyMm = 0.0; // see PointTransfer::Uncertainty
+};
+
+// registration.vtp (supine, with the Prone* arrays) and registration_prone.vtp (`pronePath`, or
+// when empty the file of that name beside registration.vtp: Slicer copies inputs to temporary
+// names, so inside Slicer the prone mesh must be passed explicitly).
+struct RegistrationMeshes {
+  TriangleMesh supine, prone;
+};
+// Reads both; throws colonmap::Error naming the file that is missing or unreadable.
+RegistrationMeshes ReadRegistration(const std::string& registrationPath, const std::string& pronePath = std::string());
+
+class PointTransfer {
+ public:
+  // source: mesh with point data <prefix>TriangleId (int), <prefix>Barycentric (3) (e.g. prefix
+  // "Prone" on registration.vtp); target: the mesh those triangle ids index. Optional source
+  // arrays: SegmentId (point), Dilatation (cell). Throws colonmap::Error (naming `sourceWhat`)
+  // when arrays are missing or ids out of range.
+  PointTransfer(const TriangleMesh& source, const TriangleMesh& target, const std::string& prefix,
+                const std::string& sourceWhat);
+  ~PointTransfer();
+  PointTransfer(const PointTransfer&) = delete;
+  PointTransfer& operator=(const PointTransfer&) = delete;
+
+  TransferredPoint Transfer(const Eigen::Vector3d& p) const;
+  // Nearest point of the target mesh: face and barycentric coordinates.
+  void NearestOnTarget(const Eigen::Vector3d& p, int* face, Eigen::Vector3d* bary) const;
+
+  // Uncertainty (mm) of a transferred point, from what the map itself shows (no truth):
+  //   sqrt(h^2 + (0.5 |offset|)^2) + 2 (K - 1) h
+  // h: mean edge length of the source face (the discretisation of the map), 0.5 |offset|: a
+  // point off the wall is re-attached along a normal that may tilt between the scans, K: the
+  // map's local dilatation (where the shape changed most between the scans the baseline map is
+  // least reliable). A heuristic; its calibration against true errors is measured on the phantom.
+  static double Uncertainty(double edge, double offset, double dilatation);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace colonmap::registration

@@ -1,0 +1,53 @@
+#pragma once
+// Registration of one colon segment, supine -> prone, from the two flat maps (DESIGN §2.4):
+//   Conformal (the "conformal map only" baseline of Zeng et al. 2010):
+//     Phi = phi2^-1 o eta o phi1, eta the affine rectangle map (RectangleAffine.h): v scaled by
+//     the length ratio, u shifted cyclically (0 when both scans were cut along the same taenia;
+//     else the shift that best correlates the two curvature images around the colon).
+//   Centerline (the centerline arc-length baseline the paper compares against): a point goes to
+//     the prone point with the same relative centerline arc length in its segment (t in [0, 1]
+//     from the vertices' CenterlineArcLength between its 1st and 99th percentile over the segment) and the same u around the colon (the flat u, i.e.
+//     the angular position measured from the cut taenia), without curvature alignment.
+// The inverse (prone -> supine) inverts the same map: prone vertices are located in the supine
+// mesh laid out at its image coordinates eta(phi1), not registered independently. Eigen and
+// Core in and out.
+#include "Core/Cancel.h"
+#include "Core/Volume.h"
+#include "Registration/RectangleAffine.h"
+#include "Registration/SurfaceMap.h"
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace colonmap::registration {
+
+enum class RegistrationMethod { Conformal, Centerline };
+
+struct SegmentInput {
+  FlatSegment flat;               // FlatUV, faces, Position3D, period
+  Eigen::VectorXd arcLength;      // CenterlineArcLength per vertex (Centerline method only)
+  const Volume<float>* curvature = nullptr;  // curvature image (optional: no shift correlation)
+  std::string cutTaenia;          // name of the cut taenia ("" unknown)
+};
+
+struct SegmentRegistration {
+  RectangleAffine eta;            // Conformal: the affine map; Centerline: identity
+  CyclicShift correlation;        // of the curvature images (when both are given)
+  bool shiftFromCorrelation = false;  // the applied shift is the correlation's (cuts differ)
+  Eigen::MatrixXd imageUV;        // supine vertices' query points in the prone flat domain
+  VertexImages forward;           // supine vertex -> prone face, bary, uv, position
+  VertexImages inverse;           // prone vertex -> supine face, bary, position
+  Eigen::MatrixXd inverseSupineUV;  // prone vertices' images in supine FlatUV
+  Eigen::VectorXcd mu;            // per supine face, of the 3D -> 3D map
+  long flatFlips = 0;             // supine faces whose image in the prone flat domain is reversed
+  long surfaceFlips = 0;          // supine faces whose 3D image faces against the prone surface
+  std::vector<std::pair<std::string, double>> times;  // seconds: shift, forward, inverse, distortion
+};
+
+// Throws colonmap::Error (a sentence, no input name) for inconsistent inputs (e.g. the Centerline
+// method without arc lengths). progress: Report(0..1), may throw Cancelled.
+SegmentRegistration RegisterSegment(const SegmentInput& supine, const SegmentInput& prone, RegistrationMethod method,
+                                    ProgressSink& progress);
+
+}  // namespace colonmap::registration

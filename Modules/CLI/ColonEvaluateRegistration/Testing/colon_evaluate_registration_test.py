@@ -1,0 +1,71 @@
+#!/usr/bin/env python3
+"""ColonEvaluateRegistration on the phantom's true walls: the conformal baseline and the centerline
+arc-length baseline evaluated on the phantom's evaluation points and polyps (the table is printed),
+errors.json / errors.tsv contents, round trip <= 1 mm, and errors (no common labels, missing file).
+
+Usage: colon_evaluate_registration_test.py <ColonEvaluateRegistration> <registration data folder>
+"""
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+exe, data = sys.argv[1], sys.argv[2]
+results = {"passed": 0, "failed": 0}
+
+
+def check(condition, message):
+    results["passed" if condition else "failed"] += 1
+    if not condition:
+        print("FAIL: " + message)
+    return condition
+
+
+def run(*args):
+    return subprocess.run([exe, *args], capture_output=True, text=True, stdin=subprocess.DEVNULL)
+
+
+work = tempfile.mkdtemp(prefix="colonmap-evaluate-test-")
+try:
+    reports = {}
+    for method, folder in (("conformal", "registration"), ("centerline", "registration-centerline")):
+        out = os.path.join(work, method + ".json")
+        r = run("--registration", os.path.join(data, folder, "registration.vtp"),
+                "--truthSupine", os.path.join(data, "supine_eval.mrk.json"), "--truthProne", os.path.join(data, "prone_eval.mrk.json"),
+                "--polypsSupine", os.path.join(data, "supine_polyps.mrk.json"), "--polypsProne", os.path.join(data, "prone_polyps.mrk.json"),
+                "--output", out)
+        check(r.returncode == 0 and r.stderr == "", f"{method}: {r.returncode} {r.stderr}")
+        tsv = os.path.join(work, method + ".tsv")
+        check(os.path.isfile(tsv), f"{method}: no table")
+        print(f"== {method} baseline (3D error mm, flat error width 1)")
+        print(open(tsv).read().rstrip())
+        j = json.load(open(out))
+        reports[method] = j
+        check(set(j["segments"]) == set("ATDSR"), f"{method}: segments {list(j['segments'])}")
+        check(j["overall"]["error3D"]["count"] > 0 and j["unmatchedLabels"] == 0, f"{method}: counts")
+        check("polyps" in j and j["polyps"]["error3D"]["count"] > 0, f"{method}: polyps")
+        check(j["overall"]["roundTrip"]["mean"] <= 1.0, f"{method}: round trip {j['overall']['roundTrip']['mean']}")
+        s = j["overall"]["error3D"]
+        check(s["median"] <= s["p90"] <= s["max"], f"{method}: statistics order")
+        u = j["overall"]["uncertainty"]
+        print(f"uncertainty: mean {u['mean']:.2f} mm, coverage {u['coverage']:.2f}, correlation with error {u['correlationWithError']:.2f}")
+    # Errors: no label in common; missing truth file.
+    other = os.path.join(work, "other.mrk.json")
+    j = json.load(open(os.path.join(data, "prone_eval.mrk.json")))
+    for c in j["markups"][0]["controlPoints"]:
+        c["label"] = "X" + c["label"]
+    json.dump(j, open(other, "w"))
+    bad = os.path.join(work, "bad.json")
+    r = run("--registration", os.path.join(data, "registration", "registration.vtp"),
+            "--truthSupine", os.path.join(data, "supine_eval.mrk.json"), "--truthProne", other, "--output", bad)
+    check(r.returncode != 0 and "no label in common" in r.stderr and not os.path.exists(bad), f"labels: {r.stderr}")
+    r = run("--registration", os.path.join(data, "registration", "registration.vtp"),
+            "--truthSupine", os.path.join(work, "none.mrk.json"), "--truthProne", other, "--output", bad)
+    check(r.returncode != 0 and len(r.stderr.strip().splitlines()) == 1 and not os.path.exists(bad), f"missing: {r.stderr}")
+finally:
+    shutil.rmtree(work, ignore_errors=True)
+
+print(f"{results['passed']} checks passed, {results['failed']} failed")
+sys.exit(1 if results["failed"] else 0)

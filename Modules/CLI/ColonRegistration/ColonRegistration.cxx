@@ -1,0 +1,283 @@
+// ColonRegistration: two ColonFlattening folders -> the supine <-> prone map of the colon wall
+// (issue 7, DESIGN §2.4). Thin: arguments, reading, Libs/Registration, combining the segments,
+// writing.
+#include "CLI/Format.h"
+#include "CLI/ModuleRunner.h"
+#include "Core/Error.h"
+#include "IO/ImageIO.h"
+#include "IO/MeshIO.h"
+#include "Registration/FlatLocator.h"
+#include "Registration/SegmentRegistration.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+
+extern "C" const char XMLModuleDescription[];
+
+namespace {
+
+using namespace colonmap;
+using namespace colonmap::registration;
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+constexpr const char* kNames[5] = {"A", "T", "D", "S", "R"};
+
+struct ScanSegment {
+  TriangleMesh flat;  // flat_X.vtp as read
+  SegmentInput input;
+  std::optional<Volume<float>> curvature;
+};
+
+const DataArray& Need(const TriangleMesh& m, const std::string& name, int cols, const std::string& what,
+                      const std::string& path) {
+  const auto it = m.pointData.find(name);
+  if (it == m.pointData.end() || it->second.values.cols() != cols || it->second.values.rows() != m.V.rows())
+    throw InputError(what, path, "needs point data " + name + " with " + std::to_string(cols) + " components");
+  return it->second;
+}
+
+ScanSegment ReadSegment(const fs::path& dir, int id, const json& report, const std::string& scan) {
+  ScanSegment s;
+  const std::string X = kNames[id];
+  const std::string path = (dir / ("flat_" + X + ".vtp")).string(), what = scan + " flat mesh " + X;
+  s.flat = io::ReadMesh(path, what);
+  if (s.flat.F.rows() == 0) throw InputError(what, path, "has no triangles");
+  s.input.flat.uv = Need(s.flat, "FlatUV", 2, what, path).values;
+  s.input.flat.position = Need(s.flat, "Position3D", 3, what, path).values;
+  s.input.flat.F = s.flat.F;
+  s.input.flat.period = FlatPeriodFromCut(s.input.flat.uv, s.input.flat.position);
+  if (report.contains("segments") && report["segments"].contains(X)) {
+    const json& j = report["segments"][X];
+    if (j.contains("flatWidth") && j["flatWidth"].is_number()) s.input.flat.period = j["flatWidth"].get<double>();
+    if (j.contains("cut") && j["cut"].is_string()) s.input.cutTaenia = j["cut"].get<std::string>();
+  }
+  if (!(s.input.flat.period > 0)) throw InputError(what, path, "the width of the flat map is unknown (no flattening.json and no cut copies)");
+  if (auto a = s.flat.pointData.find("CenterlineArcLength"); a != s.flat.pointData.end())
+    s.input.arcLength = a->second.values.col(0);
+  const fs::path image = dir / ("curvature_" + X + ".nrrd");
+  if (fs::exists(image)) {
+    s.curvature = io::ReadImage<float>(image.string(), scan + " curvature image " + X);
+    s.input.curvature = &*s.curvature;
+  }
+  return s;
+}
+
+json ReadReport(const fs::path& dir, const std::string& scan) {
+  const fs::path p = dir / "flattening.json";
+  if (!fs::exists(p)) return json::object();
+  std::ifstream f(p);
+  json j = json::parse(f, nullptr, false);
+  if (j.is_discarded()) throw InputError(scan + " flattening report", p.string(), "is not valid JSON");
+  return j;
+}
+
+// Concatenates meshes; arrays present with the same width in every part are kept.
+TriangleMesh Combine(const std::vector<const TriangleMesh*>& parts) {
+  TriangleMesh out;
+  Eigen::Index nv = 0, nf = 0;
+  for (const TriangleMesh* m : parts) {
+    nv += m->V.rows();
+    nf += m->F.rows();
+  }
+  out.V.resize(nv, 3);
+  out.F.resize(nf, 3);
+  std::map<std::string, DataArray> point = parts.front()->pointData, cell = parts.front()->cellData;
+  auto keepCommon = [&](std::map<std::string, DataArray>& arrays, bool isPoint) {
+    for (auto it = arrays.begin(); it != arrays.end();) {
+      bool ok = true;
+      for (const TriangleMesh* m : parts) {
+        const auto& a = isPoint ? m->pointData : m->cellData;
+        const auto f = a.find(it->first);
+        ok = ok && f != a.end() && f->second.values.cols() == it->second.values.cols();
+      }
+      if (ok) {
+        it->second.values.resize(isPoint ? nv : nf, it->second.values.cols());
+        ++it;
+      } else {
+        it = arrays.erase(it);
+      }
+    }
+  };
+  keepCommon(point, true);
+  keepCommon(cell, false);
+  Eigen::Index v0 = 0, f0 = 0;
+  for (const TriangleMesh* m : parts) {
+    out.V.middleRows(v0, m->V.rows()) = m->V;
+    out.F.middleRows(f0, m->F.rows()) = m->F.array() + static_cast<int>(v0);
+    for (auto& [name, a] : point) a.values.middleRows(v0, m->V.rows()) = m->pointData.at(name).values;
+    for (auto& [name, a] : cell) a.values.middleRows(f0, m->F.rows()) = m->cellData.at(name).values;
+    v0 += m->V.rows();
+    f0 += m->F.rows();
+  }
+  out.pointData = point;
+  out.cellData = cell;
+  return out;
+}
+
+// The 3D cut surface of a segment with its flat map's arrays: V = Position3D, SegmentId set.
+TriangleMesh SurfaceOf(const ScanSegment& s, int id) {
+  TriangleMesh m;
+  m.V = s.input.flat.position;
+  m.F = s.flat.F;
+  for (const auto& [name, a] : s.flat.pointData)
+    if (name != "Position3D" && name != "FlatUV") m.pointData[name] = a;
+  m.pointData["SegmentId"] = DataArray{Eigen::VectorXd::Constant(m.V.rows(), id), true};
+  return m;
+}
+
+void Run(cli::ModuleContext& ctx) {
+  const std::string sdir = ctx.args.GetString("supineFlatteningDirectory"), pdir = ctx.args.GetString("proneFlatteningDirectory"),
+                    out = ctx.args.GetString("outputDirectory");
+  if (sdir.empty() || pdir.empty()) throw Error("flattening folders: both the supine and the prone folder are needed");
+  if (out.empty()) throw Error("output folder: no folder given");
+  for (const auto& [dir, scan] : {std::pair{sdir, "supine"}, std::pair{pdir, "prone"}})
+    if (!fs::is_directory(dir))
+      throw InputError(std::string(scan) + " flattening folder", dir, fs::exists(dir) ? "is not a folder" : "does not exist");
+  const RegistrationMethod method =
+      ctx.args.GetString("method") == "centerline" ? RegistrationMethod::Centerline : RegistrationMethod::Conformal;
+  const bool reportTimes = ctx.args.GetBool("reportTimes");
+
+  std::vector<int> present;
+  std::vector<std::pair<std::string, double>> plan;
+  for (int id = 0; id < 5; ++id) {
+    const std::string name = "flat_" + std::string(kNames[id]) + ".vtp";
+    const bool s = fs::is_regular_file(fs::path(sdir) / name), p = fs::is_regular_file(fs::path(pdir) / name);
+    if (s != p)
+      throw InputError(s ? "prone flattening folder" : "supine flattening folder", s ? pdir : sdir,
+                       "has no " + name + " although the other scan has it (mismatched segments)");
+    if (s) {
+      present.push_back(id);
+      plan.emplace_back(std::string("Segment ") + kNames[id],
+                        static_cast<double>(fs::file_size(fs::path(sdir) / name) + fs::file_size(fs::path(pdir) / name)));
+    }
+  }
+  if (present.empty()) throw InputError("supine flattening folder", sdir, "holds none of flat_A.vtp ... flat_R.vtp");
+  plan.emplace_back("Write", 0.1 * plan.front().second);
+  ctx.outputs.PrepareDirectory(out, "output folder");
+  ctx.progress.Plan(plan);
+  const json sreport = ReadReport(sdir, "supine"), preport = ReadReport(pdir, "prone");
+
+  std::vector<TriangleMesh> supineParts, proneParts;
+  std::vector<SegmentRegistration> regs;
+  json segments;
+  long flips = 0;
+  for (int id : present) {
+    const std::string X = kNames[id];
+    ctx.progress.StartStage("Segment " + X, "registering segment " + X);
+    const ScanSegment s = ReadSegment(sdir, id, sreport, "supine"), p = ReadSegment(pdir, id, preport, "prone");
+    ctx.progress.Report(0.2);
+    SegmentRegistration r;
+    try {
+      SubProgress sub(ctx.progress, 0.2, 1.0);
+      r = RegisterSegment(s.input, p.input, method, sub);
+    } catch (const Cancelled&) {
+      throw;
+    } catch (const Error& e) {
+      throw Error("segment " + X + ": " + e.what());
+    }
+    supineParts.push_back(SurfaceOf(s, id));
+    proneParts.push_back(SurfaceOf(p, id));
+    TriangleMesh& sp = supineParts.back();
+    TriangleMesh& pp = proneParts.back();
+    sp.pointData["SupineFlatUV"] = DataArray{s.input.flat.uv, false};
+    sp.pointData["ProneFlatUV"] = DataArray{r.forward.uv, false};
+    sp.pointData["ProneBarycentric"] = DataArray{r.forward.bary, false};
+    sp.pointData["PronePosition"] = DataArray{r.forward.position, false};
+    sp.pointData["ProneTriangleId"] = DataArray{r.forward.face.cast<double>(), true};  // offset later
+    Eigen::VectorXd absMu = r.mu.cwiseAbs(), argMu(r.mu.size());
+    for (Eigen::Index f = 0; f < r.mu.size(); ++f) argMu(f) = std::arg(r.mu(f));
+    const Eigen::VectorXd K = Dilatation(r.mu);
+    sp.cellData["BeltramiAbs"] = DataArray{absMu, false};
+    sp.cellData["BeltramiArg"] = DataArray{argMu, false};
+    sp.cellData["Dilatation"] = DataArray{K, false};
+    pp.pointData["ProneFlatUV"] = DataArray{p.input.flat.uv, false};
+    pp.pointData["SupineFlatUV"] = DataArray{r.inverseSupineUV, false};
+    pp.pointData["SupineBarycentric"] = DataArray{r.inverse.bary, false};
+    pp.pointData["SupinePosition"] = DataArray{r.inverse.position, false};
+    pp.pointData["SupineTriangleId"] = DataArray{r.inverse.face.cast<double>(), true};
+
+    std::vector<double> k(K.data(), K.data() + K.size());
+    std::sort(k.begin(), k.end());
+    json j;
+    j["method"] = method == RegistrationMethod::Centerline ? "centerline" : "conformal";
+    j["supineVertices"] = s.flat.V.rows();
+    j["proneVertices"] = p.flat.V.rows();
+    j["supineCut"] = s.input.cutTaenia;
+    j["proneCut"] = p.input.cutTaenia;
+    j["width"] = {s.input.flat.period, p.input.flat.period};
+    j["shift"] = r.eta.shift;
+    j["shiftFromCorrelation"] = r.shiftFromCorrelation;
+    j["correlationShift"] = r.correlation.shift;
+    j["correlation"] = {{"atShift", r.correlation.correlation}, {"atZero", r.correlation.correlationAtZero}};
+    j["scale"] = r.eta.scale;
+    j["flatFlips"] = r.flatFlips;
+    j["surfaceFlips"] = r.surfaceFlips;
+    j["outsideForward"] = r.forward.outside;
+    j["outsideInverse"] = r.inverse.outside;
+    j["maxOutsideDistance"] = std::max(r.forward.maxOutsideDistance, r.inverse.maxOutsideDistance);
+    j["dilatation"] = {{"mean", K.mean()}, {"median", k[k.size() / 2]}, {"p99", k[(k.size() * 99) / 100]}, {"max", k.back()}};
+    std::string steps;
+    json times;
+    for (const auto& [step, sec] : r.times) {
+      times[step] = sec;
+      steps += (steps.empty() ? "" : ", ") + step + " " + cli::FormatNumber(sec) + " s";
+    }
+    if (reportTimes) j["times"] = times;
+    segments[X] = j;
+    flips += r.flatFlips + r.surfaceFlips;
+    ctx.progress.Note("ColonRegistration: segment " + X + ": shift " + cli::FormatNumber(r.eta.shift) + " (correlation " +
+                      cli::FormatNumber(r.correlation.shift) + "), scale " + cli::FormatNumber(r.eta.scale) + ", flips " +
+                      std::to_string(r.flatFlips) + "/" + std::to_string(r.surfaceFlips) + ", K mean " +
+                      cli::FormatNumber(K.mean()) + "; times: " + steps);
+    ctx.progress.EndStage();
+  }
+
+  ctx.progress.StartStage("Write", "writing the registration");
+  // Triangle ids index the combined meshes: add each segment's face offset.
+  Eigen::Index sf = 0, pf = 0;
+  for (std::size_t k = 0; k < supineParts.size(); ++k) {
+    supineParts[k].pointData["ProneTriangleId"].values.array() += static_cast<double>(pf);
+    proneParts[k].pointData["SupineTriangleId"].values.array() += static_cast<double>(sf);
+    sf += supineParts[k].F.rows();
+    pf += proneParts[k].F.rows();
+  }
+  std::vector<const TriangleMesh*> sptr, pptr;
+  for (const auto& m : supineParts) sptr.push_back(&m);
+  for (const auto& m : proneParts) pptr.push_back(&m);
+  const TriangleMesh supine = Combine(sptr), prone = Combine(pptr);
+  ctx.progress.Report(0.3);
+  io::WriteMesh(supine, ctx.outputs.Stage((fs::path(out) / "registration.vtp").string(), "output registration.vtp"),
+                "registration");
+  io::WriteMesh(prone, ctx.outputs.Stage((fs::path(out) / "registration_prone.vtp").string(), "output registration_prone.vtp"),
+                "prone registration mesh");
+  const Eigen::VectorXd K = supine.cellData.at("Dilatation").values.col(0);
+  json report;
+  report["segments"] = segments;
+  report["method"] = method == RegistrationMethod::Centerline ? "centerline" : "conformal";
+  report["flippedTriangles"] = flips;
+  report["supine"] = fs::path(sdir).filename().string();
+  report["meanDilatation"] = K.mean();
+  {
+    const std::string p = ctx.outputs.Stage((fs::path(out) / "registration.json").string(), "output registration.json");
+    std::ofstream f(p);
+    report.erase("supine");
+    f << report.dump(2) << "\n";
+    if (!f) throw InputError("output report", p, "cannot be written");
+  }
+  ctx.progress.EndStage();
+  if (flips > 0) ctx.progress.Note("ColonRegistration: WARNING: " + std::to_string(flips) + " flipped triangles");
+  ctx.SetReturn("segments", std::to_string(present.size()));
+  ctx.SetReturn("flippedTriangles", std::to_string(flips));
+  ctx.SetReturn("meanDilatation", cli::FormatNumber(K.mean()));
+}
+
+}  // namespace
+
+COLONMAP_CLI_EXPORT int ModuleEntryPoint(int argc, char* argv[]) {
+  return colonmap::cli::RunModule("ColonRegistration", XMLModuleDescription, argc, argv, &Run);
+}
