@@ -43,7 +43,7 @@ TEST(FlatLocator, FindsInsideOutsideAndPeriodicPoints) {
   Eigen::MatrixXi F;
   Strip(12, 30, 3.0, uv, F);
   const FlatTriangleLocator loc(uv, F, 1.0);
-  for (const Eigen::Vector2d p : {Eigen::Vector2d(0.31, 1.7), Eigen::Vector2d(0.999, 0.01), Eigen::Vector2d(0.5, 2.5)}) {
+  for (const Eigen::Vector2d& p : {Eigen::Vector2d(0.31, 1.7), Eigen::Vector2d(0.999, 0.01), Eigen::Vector2d(0.5, 2.5)}) {
     const FlatHit h = loc.Locate(p);
     ASSERT_TRUE(h.inside);
     EXPECT_LT((At(uv, F, h) - p).norm(), 1e-12);
