@@ -2,6 +2,7 @@
 
 #include "Core/Error.h"
 #include "Flattening/BeltramiCoefficient.h"
+#include "Registration/FlatLocator.h"
 #include "Surface/MeanCurvature.h"
 
 #include <Eigen/Geometry>
@@ -34,10 +35,68 @@ Eigen::MatrixXd ArcLengthCoordinates(const SegmentInput& s) {
   return ut;
 }
 
+// The Harmonic method's steps after eta: folds, matches, constraints, h; r.imageUV += h.
+void CorrectHarmonic(const SegmentInput& supine, const SegmentInput& prone, const HarmonicOptions& o, SegmentRegistration& r,
+                     ProgressSink& progress) {
+  if (supine.meanCurvature.size() != supine.flat.uv.rows() || prone.meanCurvature.size() != prone.flat.uv.rows())
+    throw Error("the harmonic method needs MeanCurvature on every vertex");
+  r.supineFolds = DetectFolds(supine.flat, supine.meanCurvature, o.folds);
+  r.proneFolds = DetectFolds(prone.flat, prone.meanCurvature, o.folds);
+  progress.Report(0.2);
+  const double period = prone.flat.period;
+  const FlatTriangleLocator locator(supine.flat.uv, supine.flat.F, supine.flat.period);
+  auto nearestVertex = [&](const Eigen::Vector2d& p) {
+    const FlatHit h = locator.Locate(p);
+    Eigen::Index k = 0;
+    h.bary.maxCoeff(&k);
+    return supine.flat.F(h.face, static_cast<int>(k));
+  };
+  const Eigen::MatrixXd etaUV = r.imageUV;
+  std::vector<FeatureMatch> matches = MatchFolds(r.supineFolds, r.proneFolds, r.eta, period, o.matching);
+  // Passes: match after eta, correct, then match again after eta + h (the first correction
+  // brings more folds within the search radius), correct again from eta.
+  for (int pass = 0; pass < o.passes; ++pass) {
+    if (pass > 0) {
+      Eigen::MatrixXd predicted(r.supineFolds.size(), 2);
+      for (std::size_t i = 0; i < r.supineFolds.size(); ++i) {
+        const FlatHit h = locator.Locate(r.supineFolds[i].centroid);
+        Eigen::Vector2d q(0, 0);
+        for (int k = 0; k < 3; ++k) q += h.bary(k) * r.correction.imageUV.row(supine.flat.F(h.face, k)).transpose();
+        predicted.row(static_cast<Eigen::Index>(i)) = q.transpose();
+      }
+      matches = MatchFolds(r.supineFolds, r.proneFolds, predicted, period, o.matching);
+    }
+    r.matchesBeforeGuard = static_cast<int>(matches.size());
+    // Constraints: each match's centroid, and its axis ends paired the way that keeps them closest.
+    std::vector<FlatConstraint> constraints;
+    for (int m = 0; m < static_cast<int>(matches.size()); ++m) {
+      const FoldFeature& a = r.supineFolds[matches[m].supine];
+      const FoldFeature& b = r.proneFolds[matches[m].prone];
+      std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> pairs{{a.centroid, b.centroid}};
+      if (o.axisEnds) {
+        const auto d = [&](const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
+          return PeriodicDifference(q, r.eta.Apply(p), period).norm();
+        };
+        const bool same = d(a.ends[0], b.ends[0]) + d(a.ends[1], b.ends[1]) <= d(a.ends[0], b.ends[1]) + d(a.ends[1], b.ends[0]);
+        pairs.emplace_back(a.ends[0], same ? b.ends[0] : b.ends[1]);
+        pairs.emplace_back(a.ends[1], same ? b.ends[1] : b.ends[0]);
+      }
+      for (const auto& [p, q] : pairs)
+        constraints.push_back({nearestVertex(p), PeriodicDifference(q, r.eta.Apply(p), period), m});
+    }
+    SubProgress sub(progress, 0.3 + 0.7 * pass / o.passes, 0.3 + 0.7 * (pass + 1) / o.passes);
+    r.correction = SolveHarmonicCorrection(supine.flat, etaUV, constraints, o.correction, sub);
+  }
+  r.imageUV = r.correction.imageUV;
+  for (int m = 0; m < static_cast<int>(matches.size()); ++m)
+    if (!std::binary_search(r.correction.droppedGroups.begin(), r.correction.droppedGroups.end(), m))
+      r.matches.push_back(matches[m]);
+}
+
 }  // namespace
 
 SegmentRegistration RegisterSegment(const SegmentInput& supine, const SegmentInput& prone, RegistrationMethod method,
-                                    ProgressSink& progress) {
+                                    ProgressSink& progress, const HarmonicOptions& harmonic) {
   SegmentRegistration r;
   auto t0 = std::chrono::steady_clock::now();
   if (supine.curvature && prone.curvature) r.correlation = CyclicShiftByCorrelation(*supine.curvature, *prone.curvature);
@@ -50,7 +109,7 @@ SegmentRegistration RegisterSegment(const SegmentInput& supine, const SegmentInp
   progress.Report(0.05);
 
   FlatSegment target = prone.flat, source = supine.flat;
-  if (method == RegistrationMethod::Conformal) {
+  if (method == RegistrationMethod::Conformal || method == RegistrationMethod::Harmonic) {
     r.eta = FitRectangleAffine(supine.flat.uv, prone.flat.uv, shift);
     r.imageUV = r.eta.Apply(supine.flat.uv);
   } else {
@@ -58,33 +117,50 @@ SegmentRegistration RegisterSegment(const SegmentInput& supine, const SegmentInp
     r.imageUV = ArcLengthCoordinates(supine);
     r.imageUV.col(0).array() += shift;
   }
-  SubProgress forwardProgress(progress, 0.05, 0.5);
-  r.forward = LocateInTarget(r.imageUV, target, forwardProgress);
-  r.forward.uv = Interpolate(r.forward, prone.flat.F, prone.flat.uv);  // in prone FlatUV
-  r.times.emplace_back("forward", Seconds(t0));
+  if (method == RegistrationMethod::Harmonic) {
+    SubProgress sub(progress, 0.05, 0.25);
+    CorrectHarmonic(supine, prone, harmonic, r, sub);
+    r.times.emplace_back("features+matching+harmonic", Seconds(t0));
+  }
+  // The Harmonic method's last one-to-one guard: a face whose 3D image faces against the prone
+  // surface (possible where a sharply stretched flat face spans a fold) halves h and relocates;
+  // after 6 halvings h = 0 (the affine map, one-to-one on flip-free flat maps).
+  const Eigen::MatrixXd etaUV = method == RegistrationMethod::Harmonic ? r.eta.Apply(supine.flat.uv) : Eigen::MatrixXd();
+  for (int attempt = 0;; ++attempt) {
+    r.flatFlips = r.surfaceFlips = 0;
+    SubProgress forwardProgress(progress, 0.25, 0.55);
+    r.forward = LocateInTarget(r.imageUV, target, forwardProgress);
+    r.forward.uv = Interpolate(r.forward, prone.flat.F, prone.flat.uv);  // in prone FlatUV
+    r.times.emplace_back("forward", Seconds(t0));
 
-  // Inverse of the same map: the supine mesh laid out at its image points.
-  source.uv = r.imageUV;
-  source.period = period;
-  SubProgress inverseProgress(progress, 0.5, 0.9);
-  r.inverse = LocateInTarget(target.uv, source, inverseProgress);
-  r.inverseSupineUV = Interpolate(r.inverse, supine.flat.F, supine.flat.uv);
-  r.inverse.uv = r.inverseSupineUV;
-  r.times.emplace_back("inverse", Seconds(t0));
+    // Inverse of the same map: the supine mesh laid out at its image points.
+    source.uv = r.imageUV;
+    source.period = period;
+    SubProgress inverseProgress(progress, 0.55, 0.9);
+    r.inverse = LocateInTarget(target.uv, source, inverseProgress);
+    r.inverseSupineUV = Interpolate(r.inverse, supine.flat.F, supine.flat.uv);
+    r.inverse.uv = r.inverseSupineUV;
+    r.times.emplace_back("inverse", Seconds(t0));
 
-  // One-to-one checks and distortion of the composed map.
-  const Eigen::VectorXd area = flattening::SignedFlatAreas(r.imageUV, supine.flat.F);
-  r.flatFlips = (area.array() <= 0.0).count();
-  r.mu = SurfaceMapBeltrami(supine.flat.position, supine.flat.F, r.forward.position);
-  const Eigen::MatrixXd proneNormals = surface::VertexNormals(prone.flat.position, prone.flat.F);
-  const Eigen::MatrixXd imageNormalAtVertex = Interpolate(r.forward, prone.flat.F, proneNormals);
-  for (Eigen::Index f = 0; f < supine.flat.F.rows(); ++f) {
-    const Eigen::Vector3d a = r.forward.position.row(supine.flat.F(f, 0)), b = r.forward.position.row(supine.flat.F(f, 1)),
-                          c = r.forward.position.row(supine.flat.F(f, 2));
-    const Eigen::Vector3d n = (b - a).cross(c - a);
-    const Eigen::Vector3d ref = imageNormalAtVertex.row(supine.flat.F(f, 0)) + imageNormalAtVertex.row(supine.flat.F(f, 1)) +
-                                imageNormalAtVertex.row(supine.flat.F(f, 2));
-    if (n.dot(ref) <= 0.0) ++r.surfaceFlips;
+    // One-to-one checks and distortion of the composed map.
+    const Eigen::VectorXd area = flattening::SignedFlatAreas(r.imageUV, supine.flat.F);
+    r.flatFlips = (area.array() <= 0.0).count();
+    r.mu = SurfaceMapBeltrami(supine.flat.position, supine.flat.F, r.forward.position);
+    const Eigen::MatrixXd proneNormals = surface::VertexNormals(prone.flat.position, prone.flat.F);
+    const Eigen::MatrixXd imageNormalAtVertex = Interpolate(r.forward, prone.flat.F, proneNormals);
+    for (Eigen::Index f = 0; f < supine.flat.F.rows(); ++f) {
+      const Eigen::Vector3d a = r.forward.position.row(supine.flat.F(f, 0)), b = r.forward.position.row(supine.flat.F(f, 1)),
+                            c = r.forward.position.row(supine.flat.F(f, 2));
+      const Eigen::Vector3d n = (b - a).cross(c - a);
+      const Eigen::Vector3d ref = imageNormalAtVertex.row(supine.flat.F(f, 0)) + imageNormalAtVertex.row(supine.flat.F(f, 1)) +
+                                  imageNormalAtVertex.row(supine.flat.F(f, 2));
+      if (n.dot(ref) <= 0.0) ++r.surfaceFlips;
+    }
+  if (method != RegistrationMethod::Harmonic || r.surfaceFlips == 0 || r.correction.scale == 0.0) break;
+    r.correction.scale = attempt < 6 ? 0.5 * r.correction.scale : 0.0;
+    r.correction.h *= attempt < 6 ? 0.5 : 0.0;
+    r.imageUV = etaUV + r.correction.h;
+    ++r.correction.surfaceRetries;
   }
   r.times.emplace_back("distortion", Seconds(t0));
   progress.Report(1.0);

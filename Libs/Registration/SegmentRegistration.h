@@ -8,11 +8,18 @@
 //     the prone point with the same relative centerline arc length in its segment (t in [0, 1]
 //     from the vertices' CenterlineArcLength between its 1st and 99th percentile over the segment) and the same u around the colon (the flat u, i.e.
 //     the angular position measured from the cut taenia), without curvature alignment.
+//   Harmonic (DESIGN §2.4, issue 7): eta as in Conformal, then fold features of both scans
+//     (FoldFeatures.h), matched after eta (FeatureMatching.h), and the harmonic correction h with
+//     the matched features' centroids and principal-axis ends as constraints (HarmonicCorrection.h):
+//     Phi = phi2^-1 o (eta o phi1 + h), never folded (the correction's one-to-one guard).
 // The inverse (prone -> supine) inverts the same map: prone vertices are located in the supine
 // mesh laid out at its image coordinates eta(phi1), not registered independently. Eigen and
 // Core in and out.
 #include "Core/Cancel.h"
 #include "Core/Volume.h"
+#include "Registration/FeatureMatching.h"
+#include "Registration/FoldFeatures.h"
+#include "Registration/HarmonicCorrection.h"
 #include "Registration/RectangleAffine.h"
 #include "Registration/SurfaceMap.h"
 
@@ -22,13 +29,23 @@
 
 namespace colonmap::registration {
 
-enum class RegistrationMethod { Conformal, Centerline };
+enum class RegistrationMethod { Conformal, Centerline, Harmonic };
+
+// Options of the Harmonic method.
+struct HarmonicOptions {
+  FoldOptions folds;
+  MatchOptions matching;
+  HarmonicCorrectionOptions correction;
+  bool axisEnds = true;  // constrain the principal-axis end points too (else centroids only)
+  int passes = 1;        // matching + correction rounds (>= 1); later ones match after eta + h
+};
 
 struct SegmentInput {
   FlatSegment flat;               // FlatUV, faces, Position3D, period
   Eigen::VectorXd arcLength;      // CenterlineArcLength per vertex (Centerline method only)
   const Volume<float>* curvature = nullptr;  // curvature image (optional: no shift correlation)
   std::string cutTaenia;          // name of the cut taenia ("" unknown)
+  Eigen::VectorXd meanCurvature;  // MeanCurvature per vertex (Harmonic method only)
 };
 
 struct SegmentRegistration {
@@ -42,12 +59,17 @@ struct SegmentRegistration {
   Eigen::VectorXcd mu;            // per supine face, of the 3D -> 3D map
   long flatFlips = 0;             // supine faces whose image in the prone flat domain is reversed
   long surfaceFlips = 0;          // supine faces whose 3D image faces against the prone surface
+  // Harmonic method: folds of both scans, the matches kept by the one-to-one guard, the correction.
+  std::vector<FoldFeature> supineFolds, proneFolds;
+  std::vector<FeatureMatch> matches;  // after the guard (dropped ones removed)
+  int matchesBeforeGuard = 0;
+  HarmonicCorrectionResult correction;
   std::vector<std::pair<std::string, double>> times;  // seconds: shift, forward, inverse, distortion
 };
 
 // Throws colonmap::Error (a sentence, no input name) for inconsistent inputs (e.g. the Centerline
 // method without arc lengths). progress: Report(0..1), may throw Cancelled.
 SegmentRegistration RegisterSegment(const SegmentInput& supine, const SegmentInput& prone, RegistrationMethod method,
-                                    ProgressSink& progress);
+                                    ProgressSink& progress, const HarmonicOptions& harmonic = {});
 
 }  // namespace colonmap::registration

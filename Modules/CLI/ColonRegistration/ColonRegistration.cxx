@@ -5,6 +5,7 @@
 #include "CLI/ModuleRunner.h"
 #include "Core/Error.h"
 #include "IO/ImageIO.h"
+#include "IO/MarkupsIO.h"
 #include "IO/MeshIO.h"
 #include "Registration/FlatLocator.h"
 #include "Registration/SegmentRegistration.h"
@@ -59,6 +60,8 @@ ScanSegment ReadSegment(const fs::path& dir, int id, const json& report, const s
   if (!(s.input.flat.period > 0)) throw InputError(what, path, "the width of the flat map is unknown (no flattening.json and no cut copies)");
   if (auto a = s.flat.pointData.find("CenterlineArcLength"); a != s.flat.pointData.end())
     s.input.arcLength = a->second.values.col(0);
+  if (auto h = s.flat.pointData.find("MeanCurvature"); h != s.flat.pointData.end() && h->second.values.cols() == 1)
+    s.input.meanCurvature = h->second.values.col(0);
   const fs::path image = dir / ("curvature_" + X + ".nrrd");
   if (fs::exists(image)) {
     s.curvature = io::ReadImage<float>(image.string(), scan + " curvature image " + X);
@@ -138,8 +141,10 @@ void Run(cli::ModuleContext& ctx) {
   for (const auto& [dir, scan] : {std::pair{sdir, "supine"}, std::pair{pdir, "prone"}})
     if (!fs::is_directory(dir))
       throw InputError(std::string(scan) + " flattening folder", dir, fs::exists(dir) ? "is not a folder" : "does not exist");
-  const RegistrationMethod method =
-      ctx.args.GetString("method") == "centerline" ? RegistrationMethod::Centerline : RegistrationMethod::Conformal;
+  const std::string methodName = ctx.args.GetString("method");
+  const RegistrationMethod method = methodName == "centerline" ? RegistrationMethod::Centerline
+                                    : methodName == "harmonic" ? RegistrationMethod::Harmonic
+                                                               : RegistrationMethod::Conformal;
   const bool reportTimes = ctx.args.GetBool("reportTimes");
 
   std::vector<int> present;
@@ -166,6 +171,9 @@ void Run(cli::ModuleContext& ctx) {
   std::vector<SegmentRegistration> regs;
   json segments;
   long flips = 0;
+  MarkupList supineFeatures, proneFeatures;
+  supineFeatures.name = "supine features";
+  proneFeatures.name = "prone features";
   for (int id : present) {
     const std::string X = kNames[id];
     ctx.progress.StartStage("Segment " + X, "registering segment " + X);
@@ -204,7 +212,23 @@ void Run(cli::ModuleContext& ctx) {
     std::vector<double> k(K.data(), K.data() + K.size());
     std::sort(k.begin(), k.end());
     json j;
-    j["method"] = method == RegistrationMethod::Centerline ? "centerline" : "conformal";
+    j["method"] = methodName;
+    if (method == RegistrationMethod::Harmonic) {
+      json m = json::array();
+      for (std::size_t k = 0; k < r.matches.size(); ++k) {
+        const FoldFeature& a = r.supineFolds[r.matches[k].supine];
+        const FoldFeature& b = r.proneFolds[r.matches[k].prone];
+        const std::string label = "F" + X + std::to_string(k + 1);
+        m.push_back({{"label", label}, {"supineUV", {a.centroid.x(), a.centroid.y()}}, {"proneUV", {b.centroid.x(), b.centroid.y()}},
+                     {"score", r.matches[k].score}});
+        supineFeatures.points.push_back({label, a.position, "fold centroid, segment " + X});
+        proneFeatures.points.push_back({label, b.position, "fold centroid, segment " + X});
+      }
+      j["features"] = {{"supine", r.supineFolds.size()}, {"prone", r.proneFolds.size()}, {"matchedBeforeGuard", r.matchesBeforeGuard},
+                       {"matched", r.matches.size()}, {"constraints", r.correction.constraintsUsed},
+                       {"droppedByGuard", r.correction.droppedGroups.size()}, {"initialFlips", r.correction.initialFlips},
+                       {"solves", r.correction.rounds}, {"hScale", r.correction.scale}, {"surfaceRetries", r.correction.surfaceRetries}, {"matches", m}};
+    }
     j["supineVertices"] = s.flat.V.rows();
     j["proneVertices"] = p.flat.V.rows();
     j["supineCut"] = s.input.cutTaenia;
@@ -230,7 +254,12 @@ void Run(cli::ModuleContext& ctx) {
     if (reportTimes) j["times"] = times;
     segments[X] = j;
     flips += r.flatFlips + r.surfaceFlips;
-    ctx.progress.Note("ColonRegistration: segment " + X + ": shift " + cli::FormatNumber(r.eta.shift) + " (correlation " +
+    const std::string featureNote =
+        method == RegistrationMethod::Harmonic
+            ? ", folds " + std::to_string(r.supineFolds.size()) + "/" + std::to_string(r.proneFolds.size()) + ", matched " +
+                  std::to_string(r.matches.size()) + " (guard dropped " + std::to_string(r.correction.droppedGroups.size()) + ")"
+            : std::string();
+    ctx.progress.Note("ColonRegistration: segment " + X + featureNote + ": shift " + cli::FormatNumber(r.eta.shift) + " (correlation " +
                       cli::FormatNumber(r.correlation.shift) + "), scale " + cli::FormatNumber(r.eta.scale) + ", flips " +
                       std::to_string(r.flatFlips) + "/" + std::to_string(r.surfaceFlips) + ", K mean " +
                       cli::FormatNumber(K.mean()) + "; times: " + steps);
@@ -258,10 +287,16 @@ void Run(cli::ModuleContext& ctx) {
   const Eigen::VectorXd K = supine.cellData.at("Dilatation").values.col(0);
   json report;
   report["segments"] = segments;
-  report["method"] = method == RegistrationMethod::Centerline ? "centerline" : "conformal";
+  report["method"] = methodName;
   report["flippedTriangles"] = flips;
   report["supine"] = fs::path(sdir).filename().string();
   report["meanDilatation"] = K.mean();
+  if (method == RegistrationMethod::Harmonic) {
+    io::WriteMarkups(supineFeatures, ctx.outputs.Stage((fs::path(out) / "supine_features.mrk.json").string(), "output supine_features.mrk.json"),
+                     "supine features");
+    io::WriteMarkups(proneFeatures, ctx.outputs.Stage((fs::path(out) / "prone_features.mrk.json").string(), "output prone_features.mrk.json"),
+                     "prone features");
+  }
   {
     const std::string p = ctx.outputs.Stage((fs::path(out) / "registration.json").string(), "output registration.json");
     std::ofstream f(p);
