@@ -12,19 +12,16 @@ import subprocess
 import sys
 import tempfile
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), *[".."] * 4, "Testing", "Python"))
+from colonmap_testing import Checks, return_parameters, run_program  # noqa: E402
+
 exe, data = sys.argv[1], sys.argv[2]
-results = {"passed": 0, "failed": 0}
-
-
-def check(condition, message):
-    results["passed" if condition else "failed"] += 1
-    if not condition:
-        print("FAIL: " + message)
-    return condition
+checks = Checks()
+check = checks.check
 
 
 def run(*args):
-    return subprocess.run([exe, *args], capture_output=True, text=True, stdin=subprocess.DEVNULL)
+    return run_program(exe, *args)
 
 
 work = tempfile.mkdtemp(prefix="colonmap-evaluate-test-")
@@ -67,5 +64,4 @@ try:
 finally:
     shutil.rmtree(work, ignore_errors=True)
 
-print(f"{results['passed']} checks passed, {results['failed']} failed")
-sys.exit(1 if results["failed"] else 0)
+sys.exit(checks.finish())
