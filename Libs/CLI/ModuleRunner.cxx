@@ -96,4 +96,31 @@ int RunModule(const char* moduleName, const char* xml, int argc, char** argv, Mo
   }
 }
 
+std::map<std::string, std::string> RunNestedModule(ModuleContext& parent, const char* moduleName,
+                                                   const char* xml, ModuleBody body,
+                                                   const std::vector<std::string>& arguments) {
+  std::vector<std::string> words{moduleName};
+  words.insert(words.end(), arguments.begin(), arguments.end());
+  std::vector<char*> argv;
+  for (auto& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  try {
+    const ModuleDescription description = ParseModuleDescription(xml);
+    const Arguments args = ParseCommandLine(description, moduleName, static_cast<int>(words.size()), argv.data());
+    Progress progress(moduleName, parent.progress);
+    OutputTransaction outputs;
+    ModuleContext ctx{moduleName, description, args, progress, outputs, {}};
+    body(ctx);
+    outputs.Commit();
+    progress.Finish();
+    return ctx.returnValues;
+  } catch (const Cancelled&) {
+    throw;
+  } catch (const HelpShown&) {
+    throw std::logic_error(std::string(moduleName) + ": nested run asked for help");
+  } catch (const Error& e) {
+    throw Error(std::string(moduleName) + ": " + e.what());
+  }
+}
+
 }  // namespace colonmap::cli

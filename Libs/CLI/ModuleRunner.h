@@ -10,9 +10,25 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 // What a module's shared library exports; nothing else is visible (see CMake/CLIModule.map).
 #define COLONMAP_CLI_EXPORT extern "C" __attribute__((visibility("default")))
+
+// Names a module's body: defines colonmap::modules::Run<Name>, which the generated entry point
+// (CMake/EmbedXML.cmake) passes to RunModule and which pipeline modules run in-process.
+#define COLONMAP_MODULE_BODY(Name, function)                                    \
+  namespace colonmap::modules {                                                 \
+  void Run##Name(cli::ModuleContext& ctx);                                      \
+  }                                                                             \
+  void colonmap::modules::Run##Name(colonmap::cli::ModuleContext& ctx) { function(ctx); }
+
+// Declares another module's body and XML (link its <Name>Body library) for RunNestedModule.
+#define COLONMAP_DECLARE_MODULE(Name)      \
+  namespace colonmap::modules {            \
+  void Run##Name(cli::ModuleContext& ctx); \
+  extern const char Name##XML[];           \
+  }
 
 namespace colonmap::cli {
 
@@ -31,5 +47,15 @@ using ModuleBody = void (*)(ModuleContext&);
 
 // The whole of a module's ModuleEntryPoint. `xml` is the embedded description.
 int RunModule(const char* moduleName, const char* xml, int argc, char** argv, ModuleBody body);
+
+// Runs another module's body in this process as the current stage of `parent` (a pipeline
+// module such as ColonSupineProne). `arguments` are its command line without argv[0], parsed
+// and checked against its XML as on the command line; its progress fills the parent's current
+// stage, its notes go to the parent, the parent's Abort stops it; its outputs are committed
+// when it succeeds. Errors come back as colonmap::Error prefixed with the module's name.
+// Returns its return parameters.
+std::map<std::string, std::string> RunNestedModule(ModuleContext& parent, const char* moduleName,
+                                                   const char* xml, ModuleBody body,
+                                                   const std::vector<std::string>& arguments);
 
 }  // namespace colonmap::cli

@@ -66,6 +66,23 @@ std::string OutputTransaction::Stage(const std::string& finalPath, const std::st
                                    FullExtension(finalPath))).string();
   temps_.push_back(temp);
   finals_.push_back(finalPath);
+  isDirectory_.push_back(false);
+  return temp;
+}
+
+std::string OutputTransaction::StageDirectory(const std::string& finalPath, const std::string& what) {
+  if (finalPath.empty()) throw Error(what + ": no output folder given");
+  fs::path final(finalPath);
+  fs::path dir = final.parent_path();
+  if (dir.empty()) dir = ".";
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) throw InputError(what, finalPath, "its parent folder does not exist");
+  if (fs::exists(final, ec) && !fs::is_directory(final, ec)) throw InputError(what, finalPath, "exists and is not a folder");
+  const std::string temp = (dir / (".colonmap-tmp-" + tag_ + "-" + std::to_string(counter_++))).string();
+  if (!fs::create_directory(temp, ec)) throw InputError(what, finalPath, "cannot create a temporary folder beside it");
+  temps_.push_back(temp);
+  finals_.push_back(finalPath);
+  isDirectory_.push_back(true);
   return temp;
 }
 
@@ -76,6 +93,7 @@ void OutputTransaction::Commit() {
   }
   for (std::size_t i = 0; i < temps_.size(); ++i) {
     std::error_code ec;
+    if (isDirectory_[i]) fs::remove_all(finals_[i], ec);  // the previous run's folder
     fs::rename(temps_[i], finals_[i], ec);
     if (ec) throw Error("output '" + finals_[i] + "': cannot rename into place (" + ec.message() + ")");
   }
@@ -84,11 +102,12 @@ void OutputTransaction::Commit() {
 
 void OutputTransaction::Rollback() {
   std::error_code ec;
-  for (const auto& t : temps_) fs::remove(t, ec);
+  for (const auto& t : temps_) fs::remove_all(t, ec);
   // Deepest first; only if empty, so that we never remove what someone else put there.
   for (const auto& d : createdDirectories_) fs::remove(d, ec);
   temps_.clear();
   finals_.clear();
+  isDirectory_.clear();
   createdDirectories_.clear();
 }
 

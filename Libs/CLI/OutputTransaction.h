@@ -21,6 +21,11 @@ class OutputTransaction {
   // `what` names the output in error messages.
   std::string Stage(const std::string& finalPath, const std::string& what);
 
+  // Registers an output folder filled by nested module runs and returns the hidden temporary
+  // folder (created) to fill instead. Commit() replaces a previous folder of that name; Rollback()
+  // removes the temporary with everything in it.
+  std::string StageDirectory(const std::string& finalPath, const std::string& what);
+
   // Makes sure an output folder exists (created if needed, removed again on failure if it was
   // created by this transaction). Throws colonmap::Error when it cannot be made or written.
   void PrepareDirectory(const std::string& directory, const std::string& what);
@@ -37,6 +42,7 @@ class OutputTransaction {
   int counter_ = 0;
   bool committed_ = false;
   std::vector<std::string> temps_, finals_, createdDirectories_;
+  std::vector<bool> isDirectory_;
 };
 
 }  // namespace colonmap::cli

@@ -27,6 +27,10 @@ Progress::Progress(std::string moduleName, Style style, ModuleProcessInformation
   }
 }
 
+Progress::Progress(std::string moduleName, Progress& parent)
+    : module_(std::move(moduleName)), style_(Style::Silent), info_(nullptr), out_(nullptr), parent_(&parent),
+      start_(std::chrono::steady_clock::now()) {}
+
 void Progress::Plan(std::vector<std::pair<std::string, double>> stages) { plan_ = std::move(stages); }
 
 double Progress::Now() const {
@@ -71,6 +75,7 @@ void Progress::Publish(double stageFraction, bool force) {
   double overall = plan_.empty() ? stageFraction : doneWeight_ + currentWeight_ * stageFraction;
   if (!plan_.empty()) overall = std::max(overall, lastOverall_);
   lastOverall_ = overall;
+  if (parent_) parent_->Report(overall);
   if (style_ == Style::SlicerTags) {
     std::fprintf(out_, "<filter-progress>%s</filter-progress>\n", FormatFixed(overall, 4).c_str());
     std::fprintf(out_, "<filter-stage-progress>%s</filter-stage-progress>\n", FormatFixed(stageFraction, 4).c_str());
@@ -108,6 +113,7 @@ void Progress::EndStage() {
 void Progress::Finish() {
   if (!stage_.empty()) EndStage();
   lastOverall_ = 1.0;
+  if (parent_) parent_->Report(1.0);
   if (style_ == Style::SlicerTags) {
     std::fprintf(out_, "<filter-progress>1</filter-progress>\n");
     std::fflush(out_);
@@ -121,6 +127,7 @@ void Progress::Finish() {
 }
 
 void Progress::Note(const std::string& text) {
+  if (parent_) return parent_->Note(text);
   if (!out_ || style_ == Style::Silent) return;
   std::fprintf(out_, "%s\n", text.c_str());
   std::fflush(out_);

@@ -3,7 +3,9 @@
 //  - Slicer running the program: <filter-start>/<filter-progress>/<filter-end> tags on stdout,
 //    one per line, flushed;
 //  - a person at a terminal: readable lines with stage names and times instead;
-//  - Slicer running the library in-process: the ModuleProcessInformation struct and its callback.
+//  - Slicer running the library in-process: the ModuleProcessInformation struct and its callback;
+//  - a module run as one stage of another (ColonSupineProne): overall progress goes to the
+//    parent's current stage, notes to the parent, and the parent's Abort applies.
 // Report() also polls the host's Abort flag and throws colonmap::Cancelled when it is set.
 #include "CLI/ProcessInformation.h"
 #include "Core/Cancel.h"
@@ -21,6 +23,8 @@ class Progress : public ProgressSink {
   enum class Style { SlicerTags, Terminal, Silent };
 
   Progress(std::string moduleName, Style style, ModuleProcessInformation* info, std::FILE* out);
+  // Nested: reports into `parent`'s current stage.
+  Progress(std::string moduleName, Progress& parent);
 
   // Declares the stages of the run with their relative weights, so that overall progress rises
   // evenly. Optional: undeclared stages share what is left.
@@ -33,7 +37,7 @@ class Progress : public ProgressSink {
 
   // Seconds per finished stage, in order.
   const std::vector<std::pair<std::string, double>>& StageTimes() const { return times_; }
-  bool AbortRequested() const { return info_ && info_->Abort; }
+  bool AbortRequested() const { return parent_ ? parent_->AbortRequested() : info_ && info_->Abort; }
   // Prints a note (never to stderr: Slicer logs stderr as errors).
   void Note(const std::string& text);
 
@@ -46,6 +50,7 @@ class Progress : public ProgressSink {
   Style style_;
   ModuleProcessInformation* info_;
   std::FILE* out_;
+  Progress* parent_ = nullptr;
   std::vector<std::pair<std::string, double>> plan_;
   std::vector<std::pair<std::string, double>> times_;
   std::string stage_;

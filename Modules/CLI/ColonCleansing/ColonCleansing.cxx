@@ -5,8 +5,6 @@
 #include "Core/Error.h"
 #include "IO/ImageIO.h"
 
-extern "C" const char XMLModuleDescription[];
-
 namespace {
 
 using namespace colonmap;
@@ -57,6 +55,4 @@ void Run(cli::ModuleContext& ctx) {
 
 }  // namespace
 
-COLONMAP_CLI_EXPORT int ModuleEntryPoint(int argc, char* argv[]) {
-  return colonmap::cli::RunModule("ColonCleansing", XMLModuleDescription, argc, argv, &Run);
-}
+COLONMAP_MODULE_BODY(ColonCleansing, Run)

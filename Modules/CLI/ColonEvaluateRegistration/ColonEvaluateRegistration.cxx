@@ -17,8 +17,6 @@
 #include <map>
 #include <sstream>
 
-extern "C" const char XMLModuleDescription[];
-
 namespace {
 
 using namespace colonmap;
@@ -195,6 +193,4 @@ void Run(cli::ModuleContext& ctx) {
 
 }  // namespace
 
-COLONMAP_CLI_EXPORT int ModuleEntryPoint(int argc, char* argv[]) {
-  return colonmap::cli::RunModule("ColonEvaluateRegistration", XMLModuleDescription, argc, argv, &Run);
-}
+COLONMAP_MODULE_BODY(ColonEvaluateRegistration, Run)

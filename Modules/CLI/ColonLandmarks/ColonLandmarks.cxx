@@ -9,8 +9,6 @@
 
 #include <filesystem>
 
-extern "C" const char XMLModuleDescription[];
-
 namespace {
 
 using namespace colonmap;
@@ -73,6 +71,4 @@ void Run(cli::ModuleContext& ctx) {
 
 }  // namespace
 
-COLONMAP_CLI_EXPORT int ModuleEntryPoint(int argc, char* argv[]) {
-  return colonmap::cli::RunModule("ColonLandmarks", XMLModuleDescription, argc, argv, &Run);
-}
+COLONMAP_MODULE_BODY(ColonLandmarks, Run)

@@ -13,8 +13,6 @@
 #include <cmath>
 #include <filesystem>
 
-extern "C" const char XMLModuleDescription[];
-
 namespace {
 
 namespace fs = std::filesystem;
@@ -157,6 +155,4 @@ void Run(cli::ModuleContext& ctx) {
 
 }  // namespace
 
-COLONMAP_CLI_EXPORT int ModuleEntryPoint(int argc, char* argv[]) {
-  return colonmap::cli::RunModule("ColonPhantom", XMLModuleDescription, argc, argv, &Run);
-}
+COLONMAP_MODULE_BODY(ColonPhantom, Run)

@@ -9,8 +9,6 @@
 
 #include <string>
 
-extern "C" const char XMLModuleDescription[];
-
 namespace {
 
 using namespace colonmap;
@@ -91,6 +89,4 @@ void Run(cli::ModuleContext& ctx) {
 
 }  // namespace
 
-COLONMAP_CLI_EXPORT int ModuleEntryPoint(int argc, char* argv[]) {
-  return colonmap::cli::RunModule("ColonSegmentation", XMLModuleDescription, argc, argv, &Run);
-}
+COLONMAP_MODULE_BODY(ColonSegmentation, Run)

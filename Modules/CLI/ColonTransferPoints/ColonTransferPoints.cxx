@@ -9,8 +9,6 @@
 
 #include <cstdio>
 
-extern "C" const char XMLModuleDescription[];
-
 namespace {
 
 using namespace colonmap;
@@ -65,6 +63,4 @@ void Run(cli::ModuleContext& ctx) {
 
 }  // namespace
 
-COLONMAP_CLI_EXPORT int ModuleEntryPoint(int argc, char* argv[]) {
-  return colonmap::cli::RunModule("ColonTransferPoints", XMLModuleDescription, argc, argv, &Run);
-}
+COLONMAP_MODULE_BODY(ColonTransferPoints, Run)
