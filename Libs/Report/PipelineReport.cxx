@@ -1,0 +1,187 @@
+#include "Report/PipelineReport.h"
+
+#include "Report/HtmlReport.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+namespace colonmap::report {
+namespace {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+const char* const kSegments[5] = {"A", "T", "D", "S", "R"};
+const char* const kSegmentNames[5] = {"ascending", "transverse", "descending", "sigmoid", "rectum"};
+
+std::string Fixed(double v, int digits) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*f", digits, v);
+  return buffer;
+}
+
+std::string Num(const json& j, const char* key, int digits) {
+  return j.is_object() && j.contains(key) && j[key].is_number() ? Fixed(j[key].get<double>(), digits) : "-";
+}
+
+json ReadJson(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) return json();
+  try {
+    return json::parse(in);
+  } catch (const json::exception&) {
+    return json();
+  }
+}
+
+std::string Folder(const PipelineReportInput& in, const std::string& stage) {
+  const auto it = in.folders.find(stage);
+  return it == in.folders.end() ? std::string() : it->second;
+}
+
+void Flags(const PipelineReportInput& in, HtmlReport& page) {
+  page.Heading("Quality");
+  int warnings = 0;
+  for (const auto& f : in.flags) warnings += f.ok ? 0 : 1;
+  if (warnings > 0)
+    page.Warning(std::to_string(warnings) + " quality check(s) need a look before the registration is trusted "
+                 "(marked CHECK below).");
+  for (const auto& f : in.flags) page.Flag(f.ok, f.name, f.detail);
+  for (const auto& note : in.summary.value("notes", json::array())) page.Warning(note.get<std::string>());
+}
+
+void StatsRow(const std::string& name, const json& e, std::vector<std::vector<std::string>>& rows) {
+  const json d = e.value("error3D", json::object());
+  const json f = e.value("errorFlat", json::object());
+  rows.push_back({name, Num(d, "count", 0), Num(d, "mean", 2), Num(d, "median", 2), Num(d, "p90", 2),
+                  Num(d, "max", 2), Num(f, "mean", 4), Num(e.value("roundTrip", json::object()), "mean", 3)});
+}
+
+void Accuracy(const PipelineReportInput& in, HtmlReport& page) {
+  const std::string dir = Folder(in, "evaluation");
+  if (dir.empty()) return;
+  const json errors = ReadJson((fs::path(dir) / "errors.json").string());
+  if (errors.is_null()) return;
+  page.Heading("Registration error against the ground truth");
+  page.Paragraph("3D distance (mm) on the prone wall between where the registration sends each supine "
+                 "evaluation point and where it truly is; flat error in the flattened domain (width 1); "
+                 "round trip: supine -> prone -> supine.");
+  std::vector<std::vector<std::string>> rows;
+  StatsRow("all points", errors.value("overall", json::object()), rows);
+  for (const char* seg : kSegments) {
+    const json s = errors.value("segments", json::object()).value(seg, json());
+    if (s.is_object()) StatsRow(std::string("segment ") + seg, s, rows);
+  }
+  if (errors.contains("polyps")) StatsRow("polyps", errors["polyps"], rows);
+  page.Table({"points", "n", "mean mm", "median mm", "p90 mm", "max mm", "flat mean", "round trip mm"}, rows);
+}
+
+void FlatViews(const PipelineReportInput& in, HtmlReport& page) {
+  const std::string dir = Folder(in, "flatviews");
+  if (dir.empty()) return;
+  const auto image = [&](const char* file, const char* caption) {
+    page.Image((fs::path(dir) / file).string(), caption);
+  };
+  page.Heading("Flattened colon, supine and prone");
+  image("flat_pair_unregistered.png",
+        "Mean-curvature images of the five flattened segments, supine (left) and prone (right), each in its "
+        "own conformal coordinates (before registration)");
+  image("flat_pair_registered.png",
+        "After registration: the prone image resampled into the supine coordinates, so the same (u, v) is the "
+        "same anatomy");
+  image("features_matched.png", "Haustral fold features; matched pairs share a colour, unmatched ones are grey");
+  page.Heading("Distortion of the registration");
+  image("dilatation_flat.png", "Dilatation K = (1 + |mu|) / (1 - |mu|) on the supine flat domain (1: conformal)");
+  image("angle_flat.png", "Angle theta = arg(mu) / 2 of the stretch direction");
+  image("checkerboard_pair.png", "A checkerboard on the supine flat domain and as carried to the prone one");
+  image("circles_pair.png", "Circles on the supine flat domain and as carried to the prone one");
+}
+
+void Findings(const PipelineReportInput& in, HtmlReport& page) {
+  const json transferred = in.summary.value("findings", json::array());
+  if (transferred.empty()) return;
+  page.Heading("Findings carried from supine to prone");
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& f : transferred) {
+    const auto vec = [&](const char* key) {
+      const json p = f.value(key, json::array());
+      return p.size() == 3 ? Fixed(p[0].get<double>(), 1) + ", " + Fixed(p[1].get<double>(), 1) + ", " +
+                                 Fixed(p[2].get<double>(), 1)
+                           : std::string("-");
+    };
+    rows.push_back({f.value("label", std::string()), vec("supine"), vec("prone"), f.value("segment", std::string("-")),
+                    Num(f, "uncertaintyMm", 1), Num(f, "trueErrorMm", 1)});
+  }
+  page.Table({"finding", "supine LPS mm", "prone LPS mm", "segment", "uncertainty mm", "true error mm"}, rows);
+  const std::string views = Folder(in, "views");
+  if (views.empty()) return;
+  page.Heading("Linked endoluminal views");
+  for (const auto& f : transferred) {
+    const std::string label = f.value("label", std::string());
+    page.Image((fs::path(views) / ("view_" + label + ".png")).string(),
+               "Finding " + label + ": supine view (left) and the prone view linked to it (right)");
+  }
+}
+
+void Segments(const PipelineReportInput& in, HtmlReport& page) {
+  const json& l0 = in.stages.landmarks[0];
+  const json& l1 = in.stages.landmarks[1];
+  if (l0.is_null() || l1.is_null()) return;
+  page.Heading("Segments");
+  std::vector<std::vector<std::string>> rows;
+  for (int k = 0; k < 5; ++k) {
+    const char* seg = kSegments[k];
+    const json a = l0.value("segments", json::object()).value(seg, json());
+    const json b = l1.value("segments", json::object()).value(seg, json());
+    const json fa = in.stages.flattening[0].value("segments", json::object()).value(seg, json());
+    const json fb = in.stages.flattening[1].value("segments", json::object()).value(seg, json());
+    const json r = in.stages.registration.is_object()
+                       ? in.stages.registration.value("segments", json::object()).value(seg, json())
+                       : json();
+    const json features = r.is_object() ? r.value("features", json()) : json();
+    const json k3 = r.is_object() ? r.value("dilatation", json()) : json();
+    rows.push_back({std::string(seg) + " (" + kSegmentNames[k] + ")", Num(a, "lengthMm", 0), Num(b, "lengthMm", 0),
+                    Num(a, "faces", 0), Num(b, "faces", 0),
+                    Num(fa.is_object() ? fa.value("beltramiAbs", json()) : json(), "mean", 3),
+                    Num(fb.is_object() ? fb.value("beltramiAbs", json()) : json(), "mean", 3),
+                    Num(features, "matched", 0), Num(k3, "mean", 2), Num(k3, "p99", 2)});
+  }
+  page.Table({"segment", "length supine mm", "length prone mm", "faces supine", "faces prone", "mean |mu| supine",
+              "mean |mu| prone", "features matched", "mean K", "p99 K"},
+             rows);
+}
+
+void Times(const PipelineReportInput& in, HtmlReport& page) {
+  page.Heading("Stage times");
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& s : in.summary.value("stages", json::array()))
+    rows.push_back({s.value("name", std::string()), s.value("module", std::string()), Num(s, "seconds", 2)});
+  rows.push_back({"whole pipeline", "ColonSupineProne", Num(in.summary, "totalSeconds", 2)});
+  page.Table({"stage", "module", "seconds"}, rows);
+}
+
+}  // namespace
+
+std::string PipelineReportHtml(const PipelineReportInput& in) {
+  HtmlReport page("ColonMap: supine-prone registration report");
+  const json inputs = in.summary.value("inputs", json::object());
+  page.Paragraph("Supine: " + inputs.value("supine", std::string("?")) + ". Prone: " +
+                 inputs.value("prone", std::string("?")) + ". Registration method: " +
+                 in.summary.value("method", std::string("?")) + ".");
+  Flags(in, page);
+  Accuracy(in, page);
+  Findings(in, page);
+  FlatViews(in, page);
+  Segments(in, page);
+  Times(in, page);
+  page.Heading("About");
+  page.Paragraph("ColonMap registers the supine and prone colon walls by quasi-conformal mapping of the flattened "
+                 "segments after W. Zeng, J. Marino, K. C. Gurijala, X. Gu and A. Kaufman, Supine and prone colon "
+                 "registration using quasi-conformal mapping, IEEE TVCG 16(6), 2010. Research software: not for "
+                 "clinical use. Files: registration.vtp (give it to ColonTransferPoints to carry more findings), "
+                 "summary.json (stage times, results and these flags), one folder per stage.");
+  return page.Html();
+}
+
+}  // namespace colonmap::report

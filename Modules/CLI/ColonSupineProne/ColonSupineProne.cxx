@@ -1,0 +1,293 @@
+// ColonSupineProne: the whole pipeline in one module (issue 9, DESIGN §2.0). Runs the stage
+// modules in this process (cli::RunNestedModule: each parses its own arguments, reports into
+// one stage of this run and commits into its stage folder), then writes summary.json and
+// report.html. Stage folders are hidden temporaries until the very end, so a failed or
+// cancelled run leaves nothing.
+#include "CLI/Format.h"
+#include "CLI/ModuleRunner.h"
+#include "Core/Error.h"
+#include "IO/MarkupsIO.h"
+#include "Report/PipelineReport.h"
+#include "Report/QualityFlags.h"
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+COLONMAP_DECLARE_MODULE(ColonCleansing)
+COLONMAP_DECLARE_MODULE(ColonSegmentation)
+COLONMAP_DECLARE_MODULE(ColonSurface)
+COLONMAP_DECLARE_MODULE(ColonLandmarks)
+COLONMAP_DECLARE_MODULE(ColonFlattening)
+COLONMAP_DECLARE_MODULE(ColonRegistration)
+COLONMAP_DECLARE_MODULE(ColonTransferPoints)
+COLONMAP_DECLARE_MODULE(ColonEvaluateRegistration)
+#ifdef COLONMAP_HAVE_FLATVIEWS
+COLONMAP_DECLARE_MODULE(ColonFlatViews)
+#endif
+#ifdef COLONMAP_HAVE_ENDOLUMINALVIEWS
+COLONMAP_DECLARE_MODULE(ColonEndoluminalViews)
+#endif
+
+namespace {
+
+using namespace colonmap;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+struct StageModule {
+  const char* name;
+  const char* xml;
+  cli::ModuleBody body;
+};
+#define COLONMAP_STAGE(Name) \
+  StageModule { #Name, colonmap::modules::Name##XML, &colonmap::modules::Run##Name }
+
+const char* const kScans[2] = {"supine", "prone"};
+
+struct Options {
+  std::string scan[2], out, findings, truth, method, targetFaces, labelValue;
+  bool labelMaps = false, views = true;
+};
+
+// One run of the pipeline: stage folders (temporary until the end), stage records.
+class Pipeline {
+ public:
+  Pipeline(cli::ModuleContext& ctx, const Options& o) : ctx_(ctx), o_(o) {}
+
+  // The (temporary) folder of a stage, staged on first use.
+  std::string Folder(const std::string& stage) {
+    auto it = folders_.find(stage);
+    if (it == folders_.end())
+      it = folders_.emplace(stage, ctx_.outputs.StageDirectory((fs::path(o_.out) / stage).string(),
+                                                               stage + " folder")).first;
+    return it->second;
+  }
+  std::string In(const std::string& stage, const std::string& file) { return (fs::path(Folder(stage)) / file).string(); }
+
+  std::map<std::string, std::string> Run(const std::string& stage, const StageModule& m,
+                                         const std::vector<std::string>& args) {
+    ctx_.progress.StartStage(stage);
+    const auto start = std::chrono::steady_clock::now();
+    auto results = cli::RunNestedModule(ctx_, m.name, m.xml, m.body, args);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    ctx_.progress.EndStage();
+    json r = json::object();
+    for (const auto& [k, v] : results) r[k] = v;
+    stages_.push_back({{"name", stage}, {"module", m.name}, {"seconds", seconds}, {"results", r}});
+    total_ += seconds;
+    return results;
+  }
+
+  const std::map<std::string, std::string>& Folders() const { return folders_; }
+  const json& Stages() const { return stages_; }
+  double TotalSeconds() const { return total_; }
+
+ private:
+  cli::ModuleContext& ctx_;
+  const Options& o_;
+  std::map<std::string, std::string> folders_;
+  json stages_ = json::array();
+  double total_ = 0.0;
+};
+
+json ReadJson(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) return json();
+  try {
+    return json::parse(in);
+  } catch (const json::exception&) {
+    return json();
+  }
+}
+
+std::string DescriptionField(const std::string& description, const std::string& key) {
+  std::smatch m;
+  return std::regex_search(description, m, std::regex("(^| )" + key + "=([^ ]+)")) ? m[2].str() : std::string();
+}
+
+// The findings table of summary.json: supine and mapped prone positions, the transfer's
+// uncertainty and, with a phantom truth carrying the same labels, the true error.
+json FindingsTable(const MarkupList& supine, const MarkupList& prone, const MarkupList* truth) {
+  json rows = json::array();
+  for (std::size_t i = 0; i < supine.points.size() && i < prone.points.size(); ++i) {
+    const auto& s = supine.points[i];
+    const auto& p = prone.points[i];
+    json row{{"label", s.label},
+             {"supine", {s.position.x(), s.position.y(), s.position.z()}},
+             {"prone", {p.position.x(), p.position.y(), p.position.z()}},
+             {"segment", DescriptionField(p.description, "segment")}};
+    const std::string u = DescriptionField(p.description, "uncertaintyMm");
+    if (!u.empty()) row["uncertaintyMm"] = std::stod(u);
+    if (truth)
+      for (const auto& t : truth->points)
+        if (t.label == s.label) row["trueErrorMm"] = (t.position - p.position).norm();
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+std::vector<std::pair<std::string, double>> Plan(const Options& o) {
+  std::vector<std::pair<std::string, double>> plan;
+  for (const char* scan : kScans) {
+    if (!o.labelMaps) {
+      plan.emplace_back(std::string("cleansing ") + scan, 2.0);
+      plan.emplace_back(std::string("segmentation ") + scan, 5.0);
+    }
+    plan.emplace_back(std::string("surface ") + scan, 9.0);
+    plan.emplace_back(std::string("landmarks ") + scan, 2.0);
+    plan.emplace_back(std::string("flattening ") + scan, 1.0);
+  }
+  plan.emplace_back("registration", 2.0);
+  if (o.views) plan.emplace_back("flat views", 1.0);
+  if (!o.findings.empty()) plan.emplace_back("transfer findings", 0.2);
+  if (!o.findings.empty() && o.views && !o.labelMaps) plan.emplace_back("endoluminal views", 2.0);
+  if (!o.truth.empty()) plan.emplace_back("evaluation", 0.3);
+  plan.emplace_back("report", 0.2);
+  return plan;
+}
+
+void CheckInputs(const Options& o) {
+  for (int k = 0; k < 2; ++k) {
+    if (o.scan[k].empty()) throw Error(std::string(kScans[k]) + " scan: no file given (--" + kScans[k] + ")");
+    if (!fs::exists(o.scan[k])) throw InputError(std::string(kScans[k]) + " scan", o.scan[k], "does not exist");
+  }
+  if (!o.findings.empty() && !fs::is_regular_file(o.findings))
+    throw InputError("findings", o.findings, "does not exist");
+  if (!o.truth.empty()) {
+    for (const char* f : {"supine_eval.mrk.json", "prone_eval.mrk.json"})
+      if (!fs::is_regular_file(fs::path(o.truth) / f))
+        throw InputError("ground truth folder", o.truth, std::string("has no ") + f + " (a ColonPhantom output folder)");
+  }
+}
+
+void Run(cli::ModuleContext& ctx) {
+  Options o;
+  o.scan[0] = ctx.args.GetString("supine");
+  o.scan[1] = ctx.args.GetString("prone");
+  o.out = ctx.args.GetString("outputDirectory");
+  o.findings = ctx.args.GetString("findings");
+  o.truth = ctx.args.GetString("groundTruth");
+  o.method = ctx.args.GetString("method");
+  o.labelMaps = ctx.args.GetBool("labelMaps");
+  o.views = !ctx.args.GetBool("skipViews");
+  o.targetFaces = std::to_string(ctx.args.GetInt("targetFaces"));
+  o.labelValue = std::to_string(ctx.args.GetInt("labelValue"));
+  if (o.out.empty()) throw Error("output folder: no folder given (--outputDirectory)");
+  CheckInputs(o);
+  ctx.outputs.PrepareDirectory(o.out, "output folder");
+  ctx.progress.Plan(Plan(o));
+
+  Pipeline p(ctx, o);
+  json notes = json::array();
+  std::string volume[2];  // what the endoluminal views render
+  for (int k = 0; k < 2; ++k) {
+    const std::string scan = kScans[k];
+    const std::string surface = p.In("surface", scan + "_surface.vtp");
+    if (!o.labelMaps) {
+      const std::string cleansed = p.In("cleansing", scan + "_cleansed.nrrd");
+      const std::string lumen = p.In("segmentation", scan + "_lumen.nrrd");
+      p.Run("cleansing " + scan, COLONMAP_STAGE(ColonCleansing),
+            {o.scan[k], cleansed, "--taggedLabel", p.In("cleansing", scan + "_tagged.nrrd")});
+      p.Run("segmentation " + scan, COLONMAP_STAGE(ColonSegmentation), {cleansed, lumen});
+      p.Run("surface " + scan, COLONMAP_STAGE(ColonSurface),
+            {lumen, surface, "--referenceCT", cleansed, "--targetFaces", o.targetFaces});
+      volume[k] = cleansed;
+    } else {
+      p.Run("surface " + scan, COLONMAP_STAGE(ColonSurface),
+            {o.scan[k], surface, "--labelValue", o.labelValue, "--targetFaces", o.targetFaces});
+    }
+    p.Run("landmarks " + scan, COLONMAP_STAGE(ColonLandmarks), {surface, p.In("landmarks", scan)});
+    p.Run("flattening " + scan, COLONMAP_STAGE(ColonFlattening), {p.In("landmarks", scan), p.In("flattening", scan)});
+  }
+  const std::string reg = p.In("registration", "registration.vtp");
+  p.Run("registration", COLONMAP_STAGE(ColonRegistration),
+        {p.In("flattening", "supine"), p.In("flattening", "prone"), p.Folder("registration"), "--method", o.method});
+  for (const char* file : {"registration.vtp", "registration_prone.vtp"})
+    fs::copy_file(p.In("registration", file), ctx.outputs.Stage((fs::path(o.out) / file).string(), file));
+
+  if (o.views) {
+#ifdef COLONMAP_HAVE_FLATVIEWS
+    p.Run("flat views", COLONMAP_STAGE(ColonFlatViews),
+          {p.In("flattening", "supine"), p.In("flattening", "prone"), p.Folder("registration"), p.Folder("flatviews")});
+#else
+    notes.push_back("Flattened and distortion views are not part of this build.");
+#endif
+  }
+  json findingsTable = json::array();
+  if (!o.findings.empty()) {
+    const std::string mapped = p.In("transfer", "findings_prone.mrk.json");
+    p.Run("transfer findings", COLONMAP_STAGE(ColonTransferPoints),
+          {"--registration", reg, "--input", o.findings, "--output", mapped});
+    const MarkupList truth = o.truth.empty() || !fs::exists(fs::path(o.truth) / "prone_polyps.mrk.json")
+                                 ? MarkupList{}
+                                 : io::ReadMarkups((fs::path(o.truth) / "prone_polyps.mrk.json").string(), "true prone polyps");
+    findingsTable = FindingsTable(io::ReadMarkups(o.findings, "findings"), io::ReadMarkups(mapped, "mapped findings"),
+                                  truth.points.empty() ? nullptr : &truth);
+    if (o.views && !o.labelMaps) {
+#ifdef COLONMAP_HAVE_ENDOLUMINALVIEWS
+      p.Run("endoluminal views", COLONMAP_STAGE(ColonEndoluminalViews),
+            {"--supineVolume", volume[0], "--proneVolume", volume[1], "--registration", reg, "--findings", o.findings,
+             p.Folder("views")});
+#else
+      notes.push_back("Endoluminal views are not part of this build.");
+#endif
+    } else if (o.labelMaps) {
+      notes.push_back("No endoluminal views: the inputs are label maps, there is no CT to render.");
+    }
+  }
+  if (!o.truth.empty()) {
+    const fs::path t(o.truth);
+    std::vector<std::string> args{"--registration", reg, "--truthSupine", (t / "supine_eval.mrk.json").string(),
+                                  "--truthProne", (t / "prone_eval.mrk.json").string()};
+    if (fs::exists(t / "supine_polyps.mrk.json") && fs::exists(t / "prone_polyps.mrk.json"))
+      args.insert(args.end(), {"--polypsSupine", (t / "supine_polyps.mrk.json").string(), "--polypsProne",
+                               (t / "prone_polyps.mrk.json").string()});
+    args.insert(args.end(), {"--output", p.In("evaluation", "errors.json"), "--outputTable",
+                             p.In("evaluation", "errors.tsv")});
+    const auto r = p.Run("evaluation", COLONMAP_STAGE(ColonEvaluateRegistration), args);
+    ctx.SetReturn("meanError", r.count("meanError") ? r.at("meanError") : "0");
+  }
+
+  ctx.progress.StartStage("report");
+  report::PipelineReportInput in;
+  for (int k = 0; k < 2; ++k) {
+    in.stages.landmarks[k] = ReadJson(p.In("landmarks", std::string(kScans[k]) + "/landmarks.json"));
+    in.stages.flattening[k] = ReadJson(p.In("flattening", std::string(kScans[k]) + "/flattening.json"));
+  }
+  in.stages.registration = ReadJson(p.In("registration", "registration.json"));
+  in.flags = report::AssessQuality(in.stages);
+  json flags = json::array();
+  int warnings = 0;
+  for (const auto& f : in.flags) {
+    flags.push_back({{"name", f.name}, {"ok", f.ok}, {"detail", f.detail}});
+    warnings += f.ok ? 0 : 1;
+  }
+  in.summary = {{"inputs", {{"supine", o.scan[0]}, {"prone", o.scan[1]}, {"labelMaps", o.labelMaps},
+                            {"findings", o.findings}, {"groundTruth", o.truth}}},
+                {"method", o.method},
+                {"stages", p.Stages()},
+                {"totalSeconds", p.TotalSeconds()},
+                {"quality", flags},
+                {"warnings", warnings},
+                {"notes", notes},
+                {"findings", findingsTable}};
+  for (const auto& [stage, folder] : p.Folders()) in.folders[stage] = folder;
+  io::WriteText(in.summary.dump(2) + "\n", ctx.outputs.Stage((fs::path(o.out) / "summary.json").string(), "summary.json"),
+                "summary.json");
+  io::WriteText(report::PipelineReportHtml(in), ctx.outputs.Stage((fs::path(o.out) / "report.html").string(), "report.html"),
+                "report.html");
+  ctx.progress.EndStage();
+
+  ctx.SetReturn("totalSeconds", cli::FormatFixed(p.TotalSeconds(), 2));
+  ctx.SetReturn("warnings", std::to_string(warnings));
+  ctx.progress.Note("ColonSupineProne: " + cli::FormatFixed(p.TotalSeconds(), 1) + " s, " + std::to_string(warnings) +
+                    " quality warning(s); report: " + (fs::path(o.out) / "report.html").string());
+}
+
+}  // namespace
+
+COLONMAP_MODULE_BODY(ColonSupineProne, Run)
