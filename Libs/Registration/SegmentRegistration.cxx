@@ -3,6 +3,7 @@
 #include "Core/Error.h"
 #include "Flattening/BeltramiCoefficient.h"
 #include "Registration/FlatLocator.h"
+#include "Registration/FlipRepair.h"
 #include "Surface/MeanCurvature.h"
 
 #include <Eigen/Geometry>
@@ -51,8 +52,13 @@ void CorrectHarmonic(const SegmentInput& supine, const SegmentInput& prone, cons
     h.bary.maxCoeff(&k);
     return supine.flat.F(h.face, static_cast<int>(k));
   };
+  // The initial map: the curvature-image warp when it was computed, else the affine eta.
+  const auto initial = [&](const Eigen::Vector2d& p) { return r.warped ? r.warp.Apply(p) : r.eta.Apply(p); };
   const Eigen::MatrixXd etaUV = r.imageUV;
-  std::vector<FeatureMatch> matches = MatchFolds(r.supineFolds, r.proneFolds, r.eta, period, o.matching);
+  Eigen::MatrixXd predicted0(r.supineFolds.size(), 2);
+  for (std::size_t i = 0; i < r.supineFolds.size(); ++i)
+    predicted0.row(static_cast<Eigen::Index>(i)) = initial(r.supineFolds[i].centroid).transpose();
+  std::vector<FeatureMatch> matches = MatchFolds(r.supineFolds, r.proneFolds, predicted0, period, o.matching);
   // Passes: match after eta, correct, then match again after eta + h (the first correction
   // brings more folds within the search radius), correct again from eta.
   for (int pass = 0; pass < o.passes; ++pass) {
@@ -75,14 +81,14 @@ void CorrectHarmonic(const SegmentInput& supine, const SegmentInput& prone, cons
       std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> pairs{{a.centroid, b.centroid}};
       if (o.axisEnds) {
         const auto d = [&](const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
-          return PeriodicDifference(q, r.eta.Apply(p), period).norm();
+          return PeriodicDifference(q, initial(p), period).norm();
         };
         const bool same = d(a.ends[0], b.ends[0]) + d(a.ends[1], b.ends[1]) <= d(a.ends[0], b.ends[1]) + d(a.ends[1], b.ends[0]);
         pairs.emplace_back(a.ends[0], same ? b.ends[0] : b.ends[1]);
         pairs.emplace_back(a.ends[1], same ? b.ends[1] : b.ends[0]);
       }
       for (const auto& [p, q] : pairs)
-        constraints.push_back({nearestVertex(p), PeriodicDifference(q, r.eta.Apply(p), period), m});
+        constraints.push_back({nearestVertex(p), PeriodicDifference(q, initial(p), period), m});
     }
     SubProgress sub(progress, 0.3 + 0.7 * pass / o.passes, 0.3 + 0.7 * (pass + 1) / o.passes);
     r.correction = SolveHarmonicCorrection(supine.flat, etaUV, constraints, o.correction, sub);
@@ -112,21 +118,32 @@ SegmentRegistration RegisterSegment(const SegmentInput& supine, const SegmentInp
   if (method == RegistrationMethod::Conformal || method == RegistrationMethod::Harmonic) {
     r.eta = FitRectangleAffine(supine.flat.uv, prone.flat.uv, shift);
     r.imageUV = r.eta.Apply(supine.flat.uv);
+    if (method == RegistrationMethod::Harmonic && harmonic.curvatureAlignment) {
+      if (supine.meanCurvature.size() != supine.flat.uv.rows() || prone.meanCurvature.size() != prone.flat.uv.rows())
+        throw Error("the harmonic method needs MeanCurvature on every vertex");
+      SubProgress sub(progress, 0.05, 0.1);
+      r.warp = AlignCurvatureImages(supine.flat, supine.meanCurvature, prone.flat, prone.meanCurvature, harmonic.alignment, sub);
+      r.warped = r.warp.valid;  // else eta (one-to-one on flip-free flat maps)
+      if (r.warped) r.imageUV = r.warp.Apply(supine.flat.uv);
+      r.times.emplace_back("alignment", Seconds(t0));
+    }
   } else {
     target.uv = ArcLengthCoordinates(prone);
     r.imageUV = ArcLengthCoordinates(supine);
     r.imageUV.col(0).array() += shift;
   }
   if (method == RegistrationMethod::Harmonic) {
-    SubProgress sub(progress, 0.05, 0.25);
+    SubProgress sub(progress, 0.1, 0.25);
     CorrectHarmonic(supine, prone, harmonic, r, sub);
     r.times.emplace_back("features+matching+harmonic", Seconds(t0));
   }
   // The Harmonic method's last one-to-one guard: a face whose 3D image faces against the prone
   // surface (possible where a sharply stretched flat face spans a fold) halves h and relocates;
   // after 6 halvings h = 0 (the affine map, one-to-one on flip-free flat maps).
-  const Eigen::MatrixXd etaUV = method == RegistrationMethod::Harmonic ? r.eta.Apply(supine.flat.uv) : Eigen::MatrixXd();
-  for (int attempt = 0;; ++attempt) {
+  const Eigen::MatrixXd etaUV = method != RegistrationMethod::Harmonic ? Eigen::MatrixXd()
+                                : r.warped ? r.warp.Apply(supine.flat.uv) : r.eta.Apply(supine.flat.uv);
+  int repairs = 0;
+  for (;;) {
     r.flatFlips = r.surfaceFlips = 0;
     SubProgress forwardProgress(progress, 0.25, 0.55);
     r.forward = LocateInTarget(r.imageUV, target, forwardProgress);
@@ -144,7 +161,7 @@ SegmentRegistration RegisterSegment(const SegmentInput& supine, const SegmentInp
 
     // One-to-one checks and distortion of the composed map.
     const Eigen::VectorXd area = flattening::SignedFlatAreas(r.imageUV, supine.flat.F);
-    r.flatFlips = (area.array() <= 0.0).count();
+    std::vector<Eigen::Index> bad;
     r.mu = SurfaceMapBeltrami(supine.flat.position, supine.flat.F, r.forward.position);
     const Eigen::MatrixXd proneNormals = surface::VertexNormals(prone.flat.position, prone.flat.F);
     const Eigen::MatrixXd imageNormalAtVertex = Interpolate(r.forward, prone.flat.F, proneNormals);
@@ -154,11 +171,25 @@ SegmentRegistration RegisterSegment(const SegmentInput& supine, const SegmentInp
       const Eigen::Vector3d n = (b - a).cross(c - a);
       const Eigen::Vector3d ref = imageNormalAtVertex.row(supine.flat.F(f, 0)) + imageNormalAtVertex.row(supine.flat.F(f, 1)) +
                                   imageNormalAtVertex.row(supine.flat.F(f, 2));
-      if (n.dot(ref) <= 0.0) ++r.surfaceFlips;
+      const bool flat = area(f) <= 0.0, surface = n.dot(ref) <= 0.0;
+      r.flatFlips += flat;
+      r.surfaceFlips += surface;
+      if (flat || surface) bad.push_back(f);
     }
-  if (method != RegistrationMethod::Harmonic || r.surfaceFlips == 0 || r.correction.scale == 0.0) break;
-    r.correction.scale = attempt < 6 ? 0.5 * r.correction.scale : 0.0;
-    r.correction.h *= attempt < 6 ? 0.5 : 0.0;
+    if (method != RegistrationMethod::Harmonic || bad.empty()) break;
+    // Reversed faces (inherited from a flattening's own reversed triangles, or made by h): first
+    // relax the image locally, on growing patches; then halve h and try again.
+    if (repairs < 4) {
+      r.repairedVertices += RelaxAroundFaces(r.imageUV, supine.flat.F, bad, 1 + repairs);
+      ++repairs;
+      ++r.repairRounds;
+      continue;
+    }
+    if (r.correction.scale == 0.0) break;
+    repairs = 0;
+    const bool halve = r.correction.surfaceRetries < 6;  // then h = 0: the initial map alone
+    r.correction.scale = halve ? 0.5 * r.correction.scale : 0.0;
+    r.correction.h *= halve ? 0.5 : 0.0;
     r.imageUV = etaUV + r.correction.h;
     ++r.correction.surfaceRetries;
   }

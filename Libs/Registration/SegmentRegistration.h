@@ -8,15 +8,18 @@
 //     the prone point with the same relative centerline arc length in its segment (t in [0, 1]
 //     from the vertices' CenterlineArcLength between its 1st and 99th percentile over the segment) and the same u around the colon (the flat u, i.e.
 //     the angular position measured from the cut taenia), without curvature alignment.
-//   Harmonic (DESIGN §2.4, issue 7): eta as in Conformal, then fold features of both scans
-//     (FoldFeatures.h), matched after eta (FeatureMatching.h), and the harmonic correction h with
-//     the matched features' centroids and principal-axis ends as constraints (HarmonicCorrection.h):
-//     Phi = phi2^-1 o (eta o phi1 + h), never folded (the correction's one-to-one guard).
+//   Harmonic (DESIGN §2.4, issue 7): an initial map W (the curvature images aligned along and
+//     around the colon, CurvatureAlignment.h; eta when harmonic.curvatureAlignment is off), then
+//     fold features of both scans (FoldFeatures.h), matched after W (FeatureMatching.h), and the
+//     harmonic correction h with the matched features' centroids and principal-axis ends as
+//     constraints (HarmonicCorrection.h): Phi = phi2^-1 o (W o phi1 + h), never folded (W is
+//     one-to-one; the correction's one-to-one guard).
 // The inverse (prone -> supine) inverts the same map: prone vertices are located in the supine
 // mesh laid out at its image coordinates eta(phi1), not registered independently. Eigen and
 // Core in and out.
 #include "Core/Cancel.h"
 #include "Core/Volume.h"
+#include "Registration/CurvatureAlignment.h"
 #include "Registration/FeatureMatching.h"
 #include "Registration/FoldFeatures.h"
 #include "Registration/HarmonicCorrection.h"
@@ -38,6 +41,9 @@ struct HarmonicOptions {
   HarmonicCorrectionOptions correction;
   bool axisEnds = true;  // constrain the principal-axis end points too (else centroids only)
   int passes = 1;        // matching + correction rounds (>= 1); later ones match after eta + h
+  // The initial map: the curvature-image warp (CurvatureAlignment.h) in place of eta.
+  bool curvatureAlignment = true;
+  AlignmentOptions alignment;
 };
 
 struct SegmentInput {
@@ -50,6 +56,8 @@ struct SegmentInput {
 
 struct SegmentRegistration {
   RectangleAffine eta;            // Conformal: the affine map; Centerline: identity
+  CurvatureWarp warp;             // Harmonic with curvatureAlignment: the initial map W
+  bool warped = false;            // W replaces eta as the initial map
   CyclicShift correlation;        // of the curvature images (when both are given)
   bool shiftFromCorrelation = false;  // the applied shift is the correlation's (cuts differ)
   Eigen::MatrixXd imageUV;        // supine vertices' query points in the prone flat domain
@@ -59,6 +67,8 @@ struct SegmentRegistration {
   Eigen::VectorXcd mu;            // per supine face, of the 3D -> 3D map
   long flatFlips = 0;             // supine faces whose image in the prone flat domain is reversed
   long surfaceFlips = 0;          // supine faces whose 3D image faces against the prone surface
+  int repairRounds = 0;           // Harmonic: local relaxations of the image around reversed faces
+  long repairedVertices = 0;      // vertices moved by them (summed over rounds)
   // Harmonic method: folds of both scans, the matches kept by the one-to-one guard, the correction.
   std::vector<FoldFeature> supineFolds, proneFolds;
   std::vector<FeatureMatch> matches;  // after the guard (dropped ones removed)

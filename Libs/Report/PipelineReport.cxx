@@ -25,16 +25,6 @@ std::string Num(const json& j, const char* key, int digits) {
   return j.is_object() && j.contains(key) && j[key].is_number() ? Fixed(j[key].get<double>(), digits) : "-";
 }
 
-json ReadJson(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return json();
-  try {
-    return json::parse(in);
-  } catch (const json::exception&) {
-    return json();
-  }
-}
-
 std::string Folder(const PipelineReportInput& in, const std::string& stage) {
   const auto it = in.folders.find(stage);
   return it == in.folders.end() ? std::string() : it->second;
@@ -61,7 +51,7 @@ void StatsRow(const std::string& name, const json& e, std::vector<std::vector<st
 void Accuracy(const PipelineReportInput& in, HtmlReport& page) {
   const std::string dir = Folder(in, "evaluation");
   if (dir.empty()) return;
-  const json errors = ReadJson((fs::path(dir) / "errors.json").string());
+  const json errors = ReadJsonOrNull((fs::path(dir) / "errors.json").string());
   if (errors.is_null()) return;
   page.Heading("Registration error against the ground truth");
   page.Paragraph("3D distance (mm) on the prone wall between where the registration sends each supine "
@@ -162,6 +152,16 @@ void Times(const PipelineReportInput& in, HtmlReport& page) {
 }
 
 }  // namespace
+
+json ReadJsonOrNull(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) return json();
+  try {
+    return json::parse(in);
+  } catch (const json::exception&) {
+    return json();
+  }
+}
 
 std::string PipelineReportHtml(const PipelineReportInput& in) {
   HtmlReport page("ColonMap: supine-prone registration report");

@@ -24,4 +24,7 @@ struct PipelineReportInput {
 
 std::string PipelineReportHtml(const PipelineReportInput& in);
 
+// A stage's JSON summary, or null when the file is missing or not JSON (that stage did not run).
+nlohmann::json ReadJsonOrNull(const std::string& path);
+
 }  // namespace colonmap::report

@@ -127,6 +127,9 @@ void Run(cli::ModuleContext& ctx) {
       const double rt = (backward.Transfer(t.position).position - c.position).norm();
       std::string seg = Segment(c.description);
       if (seg.empty() && t.segment >= 0 && t.segment < 5) seg = kNames[t.segment];
+      perPoint.push_back({{"label", c.label}, {"group", polyps ? "polyps" : seg}, {"error3D", e3}, {"errorFlat", ef},
+                          {"roundTrip", rt}, {"uncertainty", t.uncertaintyMm},
+                          {"mappedFlat", {flatMapped.x(), flatMapped.y()}}, {"trueFlat", {flatTrue.x(), flatTrue.y()}}});
       for (const std::string& g : polyps ? std::vector<std::string>{"polyps"} : std::vector<std::string>{"all", seg}) {
         if (g.empty()) continue;
         Group& G = groups[g];
@@ -168,6 +171,7 @@ void Run(cli::ModuleContext& ctx) {
   report["segments"] = segs;
   if (groups.count("polyps")) report["polyps"] = row("polyps", groups["polyps"]);
   report["unmatchedLabels"] = unmatched;
+  report["points"] = perPoint;  // per point: error, flat positions (mapped and true, prone FlatUV)
   report["flatWidth"] = 1.0;
   if (!out.empty()) {
     io::WriteText(report.dump(2) + "\n", ctx.outputs.Stage(out, "error report"), "error report");

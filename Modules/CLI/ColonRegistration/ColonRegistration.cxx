@@ -144,6 +144,8 @@ void Run(cli::ModuleContext& ctx) {
                                     : methodName == "harmonic" ? RegistrationMethod::Harmonic
                                                                : RegistrationMethod::Conformal;
   const bool reportTimes = ctx.args.GetBool("reportTimes");
+  HarmonicOptions harmonic;
+  harmonic.curvatureAlignment = ctx.args.GetString("initialMap") != "affine";
 
   std::vector<int> present;
   std::vector<std::pair<std::string, double>> plan;
@@ -180,7 +182,7 @@ void Run(cli::ModuleContext& ctx) {
     SegmentRegistration r;
     try {
       SubProgress sub(ctx.progress, 0.2, 1.0);
-      r = RegisterSegment(s.input, p.input, method, sub);
+      r = RegisterSegment(s.input, p.input, method, sub, harmonic);
     } catch (const Cancelled&) {
       throw;
     } catch (const Error& e) {
@@ -225,8 +227,13 @@ void Run(cli::ModuleContext& ctx) {
       j["features"] = {{"supine", r.supineFolds.size()}, {"prone", r.proneFolds.size()}, {"matchedBeforeGuard", r.matchesBeforeGuard},
                        {"matched", r.matches.size()}, {"constraints", r.correction.constraintsUsed},
                        {"droppedByGuard", r.correction.droppedGroups.size()}, {"initialFlips", r.correction.initialFlips},
-                       {"solves", r.correction.rounds}, {"hScale", r.correction.scale}, {"surfaceRetries", r.correction.surfaceRetries}, {"matches", m}};
+                       {"solves", r.correction.rounds}, {"hScale", r.correction.scale}, {"surfaceRetries", r.correction.surfaceRetries},
+                       {"repairRounds", r.repairRounds}, {"repairedVertices", r.repairedVertices}, {"matches", m}};
     }
+    if (!r.warp.supineV.empty())
+      j["alignment"] = {{"used", r.warped}, {"smoothSigmaRows", r.warp.smoothSigmaRows}, {"meanShift", r.warp.MeanShift()}, {"maxAlongDeviation", r.warp.MaxAlongDeviation()},
+                        {"pathCorrelation", r.warp.pathCorrelation}, {"affineCorrelation", r.warp.affineCorrelation},
+                        {"rows", r.warp.rows}};
     j["supineVertices"] = s.flat.V.rows();
     j["proneVertices"] = p.flat.V.rows();
     j["supineCut"] = s.input.cutTaenia;

@@ -14,7 +14,6 @@
 
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <regex>
 
 COLONMAP_DECLARE_MODULE(ColonCleansing)
@@ -25,12 +24,8 @@ COLONMAP_DECLARE_MODULE(ColonFlattening)
 COLONMAP_DECLARE_MODULE(ColonRegistration)
 COLONMAP_DECLARE_MODULE(ColonTransferPoints)
 COLONMAP_DECLARE_MODULE(ColonEvaluateRegistration)
-#ifdef COLONMAP_HAVE_FLATVIEWS
 COLONMAP_DECLARE_MODULE(ColonFlatViews)
-#endif
-#ifdef COLONMAP_HAVE_ENDOLUMINALVIEWS
 COLONMAP_DECLARE_MODULE(ColonEndoluminalViews)
-#endif
 
 namespace {
 
@@ -93,16 +88,6 @@ class Pipeline {
   json stages_ = json::array();
   double total_ = 0.0;
 };
-
-json ReadJson(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return json();
-  try {
-    return json::parse(in);
-  } catch (const json::exception&) {
-    return json();
-  }
-}
 
 std::string DescriptionField(const std::string& description, const std::string& key) {
   std::smatch m;
@@ -209,14 +194,9 @@ void Run(cli::ModuleContext& ctx) {
   for (const char* file : {"registration.vtp", "registration_prone.vtp"})
     fs::copy_file(p.In("registration", file), ctx.outputs.Stage((fs::path(o.out) / file).string(), file));
 
-  if (o.views) {
-#ifdef COLONMAP_HAVE_FLATVIEWS
+  if (o.views)
     p.Run("flat views", COLONMAP_STAGE(ColonFlatViews),
           {p.In("flattening", "supine"), p.In("flattening", "prone"), p.Folder("registration"), p.Folder("flatviews")});
-#else
-    notes.push_back("Flattened and distortion views are not part of this build.");
-#endif
-  }
   json findingsTable = json::array();
   if (!o.findings.empty()) {
     const std::string mapped = p.In("transfer", "findings_prone.mrk.json");
@@ -228,13 +208,16 @@ void Run(cli::ModuleContext& ctx) {
     findingsTable = FindingsTable(io::ReadMarkups(o.findings, "findings"), io::ReadMarkups(mapped, "mapped findings"),
                                   truth.points.empty() ? nullptr : &truth);
     if (o.views && !o.labelMaps) {
-#ifdef COLONMAP_HAVE_ENDOLUMINALVIEWS
-      p.Run("endoluminal views", COLONMAP_STAGE(ColonEndoluminalViews),
-            {"--supineVolume", volume[0], "--proneVolume", volume[1], "--registration", reg, "--findings", o.findings,
-             p.Folder("views")});
-#else
-      notes.push_back("Endoluminal views are not part of this build.");
-#endif
+      // Rendering needs an X display; without one the rest of the run still stands.
+      try {
+        p.Run("endoluminal views", COLONMAP_STAGE(ColonEndoluminalViews),
+              {"--supineVolume", volume[0], "--proneVolume", volume[1], "--registration", reg, "--findings",
+               o.findings, p.Folder("views")});
+      } catch (const Error& e) {
+        ctx.progress.EndStage();
+        notes.push_back(std::string("No endoluminal views: ") + e.what());
+        ctx.progress.Note(std::string("ColonSupineProne: WARNING: no endoluminal views: ") + e.what());
+      }
     } else if (o.labelMaps) {
       notes.push_back("No endoluminal views: the inputs are label maps, there is no CT to render.");
     }
@@ -255,10 +238,10 @@ void Run(cli::ModuleContext& ctx) {
   ctx.progress.StartStage("report");
   report::PipelineReportInput in;
   for (int k = 0; k < 2; ++k) {
-    in.stages.landmarks[k] = ReadJson(p.In("landmarks", std::string(kScans[k]) + "/landmarks.json"));
-    in.stages.flattening[k] = ReadJson(p.In("flattening", std::string(kScans[k]) + "/flattening.json"));
+    in.stages.landmarks[k] = report::ReadJsonOrNull(p.In("landmarks", std::string(kScans[k]) + "/landmarks.json"));
+    in.stages.flattening[k] = report::ReadJsonOrNull(p.In("flattening", std::string(kScans[k]) + "/flattening.json"));
   }
-  in.stages.registration = ReadJson(p.In("registration", "registration.json"));
+  in.stages.registration = report::ReadJsonOrNull(p.In("registration", "registration.json"));
   in.flags = report::AssessQuality(in.stages);
   json flags = json::array();
   int warnings = 0;

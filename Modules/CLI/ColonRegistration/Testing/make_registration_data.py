@@ -29,7 +29,8 @@ for scan in ("supine", "prone"):
     run(flatten, os.path.join(raw, scan), os.path.join(out, scan))
     for kind in ("eval", "polyps"):
         shutil.copy(os.path.join(raw, f"{scan}_{kind}.mrk.json"), os.path.join(out, f"{scan}_{kind}.mrk.json"))
-run(register, os.path.join(out, "supine"), os.path.join(out, "prone"), os.path.join(out, "registration"))
+run(register, "--method", "conformal", os.path.join(out, "supine"), os.path.join(out, "prone"),
+    os.path.join(out, "registration"))
 run(register, "--method", "centerline", os.path.join(out, "supine"), os.path.join(out, "prone"),
     os.path.join(out, "registration-centerline"))
 print("registration test data in", out)
