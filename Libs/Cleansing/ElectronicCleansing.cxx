@@ -9,6 +9,10 @@
 namespace colonmap::cleansing {
 namespace {
 
+constexpr int kCleanColumnSearch = 8;        // voxels around a level voxel searched for clean columns
+constexpr double kNoiseHU = 60.0;            // tolerated dip in a clean column's air-to-fluid ramp
+constexpr double kIllConditionedHU = 150.0;  // below: a lumen this close to wall HU says nothing
+
 // The index-space axis (0,1,2) and sign closest to a physical direction.
 void DominantAxis(const Volume<short>& ct, const Eigen::Vector3d& down, int& axis, int& sign) {
   const Eigen::Vector3d inIndex = ct.direction.transpose() * down;
@@ -60,29 +64,134 @@ CleansingResult Cleanse(const Volume<short>& ct, const CleansingParameters& p, P
       }
   }
 
+  // A voxel of the air-fluid level: air above and tagged core below along gravity, within reach.
+  const auto isLevel = [&](long i, long j, long k) {
+    if (!layer.At(i, j, k)) return false;
+    bool airAbove = false, fluidBelow = tagged.core.At(i, j, k) != 0;
+    for (int step = 1; step <= reach; ++step) {
+      long up[3] = {i, j, k}, down[3] = {i, j, k};
+      up[axis] -= sign * step;
+      down[axis] += sign * step;
+      if (up[axis] >= 0 && up[axis] < n[axis] && ct.At(up[0], up[1], up[2]) < p.airThresholdHU) airAbove = true;
+      if (down[axis] >= 0 && down[axis] < n[axis] && tagged.core.At(down[0], down[1], down[2])) fluidBelow = true;
+    }
+    return airAbove && fluidBelow;
+  };
+  // Lumen fraction of a voxel that mixes wall with air only (above the level) or with fluid only
+  // (below it).
+  const auto lumenAbove = [&](double hu) { return std::clamp((p.wallHU - hu) / (p.wallHU - p.airHU), 0.0, 1.0); };
+  const auto lumenBelow = [&](double hu) { return std::clamp((hu - p.wallHU) / fluidMinusWall, 0.0, 1.0); };
+
+  // Fluid fraction s of the lumen at the height of voxel (i, j, k), read from the nearest clean
+  // columns of the same level: columns with air above and fluid below and nothing else between,
+  // where a voxel is air + fluid only. The level is flat, so s depends on the height alone.
+  // Returns -1 when no clean column is near.
+  const int lateral[2] = {(axis + 1) % 3, (axis + 2) % 3};
+  const auto levelFluidFraction = [&](long i, long j, long k) {
+    const long at[3] = {i, j, k};
+    double sum = 0.0;
+    int found = 0;
+    for (int radius = 1; radius <= kCleanColumnSearch && found < 4; ++radius)
+      for (int a = -radius; a <= radius; ++a)
+        for (int b = -radius; b <= radius; ++b) {
+          if (std::max(std::abs(a), std::abs(b)) != radius || found >= 4) continue;
+          long q[3] = {at[0], at[1], at[2]};
+          q[lateral[0]] += a;
+          q[lateral[1]] += b;
+          long top[3] = {q[0], q[1], q[2]}, bottom[3] = {q[0], q[1], q[2]};
+          top[axis] -= sign * (reach + 1);
+          bottom[axis] += sign * (reach + 1);
+          bool inside = true;
+          for (int d = 0; d < 3; ++d)
+            inside = inside && std::min({q[d], top[d], bottom[d]}) >= 0 && std::max({q[d], top[d], bottom[d]}) < n[d];
+          if (!inside || ct.At(top[0], top[1], top[2]) >= p.airThresholdHU ||
+              !tagged.core.At(bottom[0], bottom[1], bottom[2]))
+            continue;
+          // Air to fluid without a dip: no wall in between.
+          bool monotone = true;
+          double previous = p.airHU - kNoiseHU;
+          for (int step = -(reach + 1); step <= reach + 1 && monotone; ++step) {
+            long c[3] = {q[0], q[1], q[2]};
+            c[axis] += sign * step;
+            const double v = ct.At(c[0], c[1], c[2]);
+            monotone = v >= previous - kNoiseHU;
+            previous = std::max(previous, v);
+          }
+          if (!monotone) continue;
+          sum += std::clamp((ct.At(q[0], q[1], q[2]) - p.airHU) / fluidMinusAir, 0.0, 1.0);
+          ++found;
+        }
+    return found ? sum / found : -1.0;
+  };
+
+  // Lumen fraction L of a voxel of the level band, and how well its value determines it. Where
+  // the level meets the wall a voxel mixes air, fluid and wall:
+  //   HU = L (air + s (fluid - air)) + (1 - L) wall,
+  // with s, the fluid fraction of the lumen at that height, from the clean columns. Where the
+  // lumen's mixed value is close to the wall's (s near 0.6) the equation says nothing (weight 0).
+  struct Estimate {
+    double lumen = 1.0, weight = 0.0;
+  };
+  const auto threeMaterial = [&](long i, long j, long k) {
+    Estimate e;
+    const double s = levelFluidFraction(i, j, k);
+    if (s < 0.0) return e;
+    const double contrast = p.airHU + s * fluidMinusAir - p.wallHU;
+    if (std::abs(contrast) < 1.0) return e;
+    e.lumen = std::clamp((ct.At(i, j, k) - p.wallHU) / contrast, 0.0, 1.0);
+    e.weight = std::clamp((std::abs(contrast) - kIllConditionedHU) / kIllConditionedHU, 0.0, 1.0);
+    return e;
+  };
+  // Where the voxel's own estimate is weak, the wall's lumen fraction is interpolated along
+  // gravity from the nearest voxels above and below that are well determined: level voxels with
+  // a firm three-material estimate, or the first voxels past the band (air + wall above,
+  // fluid + wall below: unambiguous). The band of weak estimates is about one voxel thick.
+  const auto levelLumenFraction = [&](long i, long j, long k) {
+    const Estimate own = threeMaterial(i, j, k);
+    if (own.weight >= 1.0) return own.lumen;
+    const long at[3] = {i, j, k};
+    double fraction[2] = {1.0, 1.0};
+    int distance[2] = {0, 0};
+    for (int side = 0; side < 2; ++side) {
+      const int dir = side == 0 ? -sign : sign;  // 0: up, 1: down
+      for (int step = 1; step <= 2 * reach + 1; ++step) {
+        long q[3] = {at[0], at[1], at[2]};
+        q[axis] += dir * step;
+        if (q[axis] < 0 || q[axis] >= n[axis]) break;
+        distance[side] = step;
+        if (isLevel(q[0], q[1], q[2])) {
+          const Estimate e = threeMaterial(q[0], q[1], q[2]);
+          if (e.weight < 0.5) continue;
+          fraction[side] = e.lumen;
+          break;
+        }
+        const double v = ct.At(q[0], q[1], q[2]);
+        fraction[side] = side == 0 ? lumenAbove(v) : lumenBelow(v);
+        break;
+      }
+    }
+    const double total = std::max(1, distance[0] + distance[1]);
+    const double interpolated = fraction[0] + (fraction[1] - fraction[0]) * double(distance[0]) / total;
+    return own.weight * own.lumen + (1.0 - own.weight) * interpolated;
+  };
+
   for (long k = 0; k < n[2]; ++k) {
     progress.Report(0.8 + 0.2 * double(k) / double(n[2]));
     for (long j = 0; j < n[1]; ++j)
       for (long i = 0; i < n[0]; ++i) {
         if (!layer.At(i, j, k)) continue;
         const double hu = ct.At(i, j, k);
-        // Air above and fluid below along gravity: a voxel of the air-fluid level.
-        bool airAbove = false, fluidBelow = tagged.core.At(i, j, k) != 0;
-        for (int step = 1; step <= reach; ++step) {
-          long up[3] = {i, j, k}, down[3] = {i, j, k};
-          up[axis] -= sign * step;
-          down[axis] += sign * step;
-          if (up[axis] >= 0 && up[axis] < n[axis] && ct.At(up[0], up[1], up[2]) < p.airThresholdHU) airAbove = true;
-          if (down[axis] >= 0 && down[axis] < n[axis] && tagged.core.At(down[0], down[1], down[2])) fluidBelow = true;
-        }
-        double phi = 0.0;  // fraction of tagged material in the voxel
-        if (airAbove && fluidBelow) {
-          phi = std::clamp((hu - p.airHU) / fluidMinusAir, 0.0, 1.0);
+        double cleansed = hu, phi = 0.0;  // phi: fraction of tagged material in the voxel
+        if (isLevel(i, j, k)) {
+          const double lumen = levelLumenFraction(i, j, k);
+          cleansed = lumen * p.airHU + (1.0 - lumen) * p.wallHU;
+          phi = std::clamp((hu - cleansed) / fluidMinusAir, 0.0, 1.0);
+          if (cleansed >= hu) continue;  // nothing tagged to remove
         } else {
           phi = std::clamp((hu - p.wallHU) / fluidMinusWall, 0.0, 1.0);
+          if (phi <= 0.0) continue;
+          cleansed = hu - phi * fluidMinusAir;
         }
-        if (phi <= 0.0) continue;
-        const double cleansed = hu - phi * fluidMinusAir;
         r.cleansed.At(i, j, k) = static_cast<short>(std::lround(std::clamp(cleansed, -1024.0, 3071.0)));
         ++r.taggedVoxels;
         if (phi >= 0.5) r.tagged.At(i, j, k) = 1;
