@@ -35,6 +35,28 @@ int SharpestNear(const Eigen::VectorXd& bend, int i, int r) {
   return best;
 }
 
+// Walking from `start` by `dir` (not reaching `stop`): the first peak (want +1) or trough
+// (want -1) of z with hysteresis h. The run starts once z has moved by more than h in the wanted
+// direction from its extreme so far (an initial run the other way is skipped); it ends when z
+// falls back by more than h from the run's extreme, which is returned. A run still going at
+// `stop` returns its extreme; no run at all returns -1.
+int FirstExtremum(const Eigen::VectorXd& z, int start, int dir, int stop, double h, int want) {
+  const int n = static_cast<int>(z.size());
+  int low = start, best = -1;
+  for (int i = start; i != stop && i >= 0 && i < n; i += dir) {
+    const double v = want * z(i);
+    if (best < 0) {
+      if (v < want * z(low)) low = i;
+      if (v - want * z(low) > h) best = i;
+    } else if (v > want * z(best)) {
+      best = i;
+    } else if (want * z(best) - v > h) {
+      return best;
+    }
+  }
+  return best;
+}
+
 std::string Mm(double v) {
   std::ostringstream s;
   s.precision(0);
@@ -64,14 +86,43 @@ Flexures FindFlexures(const Eigen::MatrixXd& P, const Eigen::VectorXd& arc, cons
   if (sf < 0) fail("no centreline point on the left side for the splenic flexure");
   sf = SharpestNear(bend, sf, refine);
   found += "SF at " + Mm(arc(sf));
-  int hf = -1;
-  for (int i = sf + 1; i < n; ++i)
-    if (P(i, 0) < xmid && (hf < 0 || P(i, 2) > P(hf, 2))) hf = i;
-  if (hf < 0) fail("no centreline point on the right side between the splenic flexure and the cecum");
-  hf = SharpestNear(bend, hf, refine);
+
+  const Eigen::VectorXd z = P.col(2);
+  const double h = o.heightHysteresisMm;
+  // HF: the ascending colon's climb from the cecal end, up to its first peak (see the header).
+  const int top = FirstExtremum(z, n - 1, -1, sf, h, +1);
+  if (top < 0) fail("the colon does not rise from the cecum toward the splenic flexure");
+  const int tw = std::max(1, static_cast<int>(std::round(o.turnTangentMm / step)));
+  // Unit direction of travel toward the anus at sample i (chord over +-tw samples).
+  const auto travel = [&](int i) -> Eigen::RowVector3d {
+    const Eigen::RowVector3d t = P.row(std::clamp(i - tw, 0, n - 1)) - P.row(std::clamp(i + tw, 0, n - 1));
+    return t.norm() > 0 ? Eigen::RowVector3d(t / t.norm()) : Eigen::RowVector3d::Zero();
+  };
+  int hf = top;
+  const double climb = std::sin(o.hepaticClimbDeg * M_PI / 180.0);
+  for (int i = top; i < n - 1; ++i)
+    if (travel(i)(2) > climb) {
+      hf = i;
+      break;
+    }
   if (hf <= sf) fail("the hepatic flexure is not on the cecum side of the splenic flexure");
   found += ", HF at " + Mm(arc(hf));
-
+  // DSJ: the end of the descent from SF, or before it where the colon turns forward and medially.
+  const int trough = FirstExtremum(z, sf, -1, -1, h, -1);
+  if (trough < 0) fail("no end of the descending colon below the splenic flexure");
+  const double lowest = z(trough) + o.descendingLowerFraction * (z(sf) - z(trough));
+  const double norm = std::hypot(1.0, o.sigmoidMedialWeight);
+  int dsj = trough;
+  for (int i = sf; i > trough; --i) {
+    if (z(i) > lowest) continue;
+    const Eigen::RowVector3d t = travel(i);
+    if ((-t(1) - o.sigmoidMedialWeight * t(0)) / norm > o.sigmoidTurn) {
+      dsj = i;
+      break;
+    }
+  }
+  if (dsj <= 0) fail("no end of the descending colon above the anal end");
+  found += ", DSJ at " + Mm(arc(dsj));
   const int w = std::max(1, static_cast<int>(std::round(o.tangentMm / step)));
   // First sample from `i` walking in `dir` where the direction of travel (over +-w samples)
   // leaves `ref` by more than the threshold; -1 if none before `stop`.
@@ -84,15 +135,6 @@ Flexures FindFlexures(const Eigen::MatrixXd& P, const Eigen::VectorXd& arc, cons
     return -1;
   };
   const Eigen::RowVector3d up(0, 0, 1);
-  // HF: the ascending colon rises from the cecum; it ends where the colon turns away from +z.
-  const int hfv = leave(n - 1 - static_cast<int>(std::round(o.cecumSkipMm / step)), -1, up, sf, o.hepaticExitDeg);
-  if (hfv < 0) fail("the ascending colon does not turn between the cecum and the splenic flexure");
-  found += ", HF at " + Mm(arc(hfv)) + " (highest right " + Mm(arc(hf)) + ")";
-  hf = hfv;
-  // DSJ: the descending colon falls from SF; it ends where the colon turns away from -z.
-  const int dsj = leave(sf - static_cast<int>(std::round(o.splenicBendMm / step)), -1, -up, 0, o.descendingExitDeg);
-  if (dsj < 0) fail("no end of the descending colon below the splenic flexure");
-  found += ", DSJ at " + Mm(arc(dsj));
   // RSJ: the rectum rises from the anus; it ends where the colon turns away from +z. The anal
   // canal itself leans (40-55 degrees on the phantom), so the walk starts at the rectum's most
   // vertical point within rectumSearchMm of the anal end, not at a fixed distance.

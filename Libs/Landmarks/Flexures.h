@@ -2,20 +2,30 @@
 // The four flexures of the colon on its centreline: hepatic (HF, A-T), splenic (SF, T-D),
 // descending-sigmoid (DSJ, D-S) and sigmoid-rectum (RSJ, S-R) junctions.
 //
-// Method (the paper orders the major bends by height; we add left/right, LPS: +x is patient
-// left, +z superior): with `bend(i)` the turning angle of the centreline at sample i over
-// +-bendScaleMm of arc,
+// Method (the paper orders the major bends by height; we add left/right and the shape of the
+// height profile; LPS: +x is patient left, +y posterior, +z superior). Rules on the height
+// profile z(s) use a hysteresis of heightHysteresisMm, so that the small rises and dips of a
+// real, tortuous colon do not end a run (the GCA descending colon wanders +-50 degrees off the
+// vertical over 600 mm but never rises on our centreline; its sigmoid rises 18 mm after the DSJ).
 //   SF  = the highest centreline point on the left half (x above the middle of the x range),
-//   HF  = the highest point on the right half on the cecum side of SF,
-//   SF moved to the sharpest bend within +-refineMm;
-//   HF  = going from the cecum (past cecumSkipMm) up the ascending colon, the first point
-//         where the direction of travel (chord over +-tangentMm) leaves +z by more than
-//         the exit angle (it must lie on the cecum side of SF);
-//   DSJ = going from SF (past splenicBendMm) down the descending colon, the first point where
-//         the direction leaves -z by more than the exit angle;
+//         moved to the sharpest bend (turning angle over +-bendScaleMm) within +-refineMm;
+//   HF  = the top of the ascending colon's climb: walking from the cecal end, the first peak of
+//         z (after the first rise of more than the hysteresis, so a horizontal or sinking
+//         caecal pole does not count), moved back toward the cecum to the last point that still
+//         climbs at more than hepaticClimbDeg (the colon levels off into the transverse there);
+//   DSJ = where the descending colon leaves the left paracolic gutter: walking from SF toward
+//         the anus, the descent ends at the first trough of z (hysteresis); in the lowest
+//         descendingLowerFraction of that descent, the first point where the colon turns
+//         anterior and medial (the sigmoid runs forward and to the midline on its mesocolon;
+//         unit direction of travel t over +-turnTangentMm: (-t_y - sigmoidMedialWeight t_x) /
+//         |(1, sigmoidMedialWeight)| above sigmoidTurn), else the trough itself;
 //   RSJ = going up the rectum from its most vertical point (within rectumSearchMm of the anal
 //         end; the anal canal leans), the first point where the
 //         direction leaves +z by more than the exit angle (before the DSJ).
+// Why not fixed distances or vertical-exit angles for HF and DSJ: on the real GCA colon the
+// caecum runs horizontally for ~80 mm (an exit-angle walk from the cecum fired next to it,
+// HF +311 mm) and the descending colon is tilted 35-55 degrees over long stretches (the
+// exit-angle walk from SF stopped 70 mm below it, DSJ +512 mm).
 // The phantom check (Testing/LandmarksPhantomTest) measures these against the truth.
 // Anything missing or out of order is an Error saying what was found.
 #include <Eigen/Core>
@@ -28,13 +38,14 @@ namespace colonmap::landmarks {
 struct FlexureOptions {
   double bendScaleMm = 40.0;
   double refineMm = 40.0;
-  double tangentMm = 20.0;
-  // Turn away from the vertical that ends the ascending colon, descending colon, rectum.
-  double hepaticExitDeg = 60.0;
-  double descendingExitDeg = 35.0;
-  double rectumExitDeg = 45.0;
-  double splenicBendMm = 60.0;  // skip this much below SF before looking for the DSJ
-  double cecumSkipMm = 30.0;    // and this much of the cecum before looking for the HF
+  double tangentMm = 20.0;       // chord half-length of the direction of travel (RSJ)
+  double turnTangentMm = 10.0;   // the same for the HF and DSJ rules
+  double heightHysteresisMm = 10.0;  // a peak or trough of z must be this prominent
+  double hepaticClimbDeg = 3.0;       // HF: the last point climbing steeper than this
+  double descendingLowerFraction = 0.25;  // DSJ: searched in this lowest part of the descent
+  double sigmoidTurn = 0.5;           // DSJ: anterior-medial component of travel above this
+  double sigmoidMedialWeight = 0.5;   // weight of the medial (-x) part in that component
+  double rectumExitDeg = 45.0;   // turn away from the vertical that ends the rectum
   double minRectumMm = 40.0;     // where the RSJ walk starts when no vertical stretch is found
   double rectumSearchMm = 100.0;  // the RSJ walk starts at the most vertical point this near the anus
 };

@@ -86,6 +86,12 @@ void FlatViews(const PipelineReportInput& in, HtmlReport& page) {
   image("angle_flat.png", "Angle theta = arg(mu) / 2 of the stretch direction");
   image("checkerboard_pair.png", "A checkerboard on the supine flat domain and as carried to the prone one");
   image("circles_pair.png", "Circles on the supine flat domain and as carried to the prone one");
+  // 3D renderings exist only where ColonFlatViews had a display.
+  const auto optional = [&](const char* file, const char* caption) {
+    if (fs::exists(fs::path(dir) / file)) image(file, caption);
+  };
+  optional("distortion_3d.png", "Dilatation K and angle theta on the supine colon surface");
+  optional("textures_3d.png", "A checkerboard on the supine surface (left) and carried onto the prone surface (right)");
 }
 
 void Findings(const PipelineReportInput& in, HtmlReport& page) {
