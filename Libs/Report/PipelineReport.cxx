@@ -67,6 +67,12 @@ void Accuracy(const PipelineReportInput& in, HtmlReport& page) {
   page.Table({"points", "n", "mean mm", "median mm", "p90 mm", "max mm", "flat mean", "round trip mm"}, rows);
 }
 
+std::string MorphName(int frame) {
+  char name[32];
+  std::snprintf(name, sizeof name, "morph_%03d.png", frame);
+  return name;
+}
+
 void FlatViews(const PipelineReportInput& in, HtmlReport& page) {
   const std::string dir = Folder(in, "flatviews");
   if (dir.empty()) return;
@@ -91,7 +97,11 @@ void FlatViews(const PipelineReportInput& in, HtmlReport& page) {
     if (fs::exists(fs::path(dir) / file)) image(file, caption);
   };
   optional("distortion_3d.png", "Dilatation K and angle theta on the supine colon surface");
-  optional("textures_3d.png", "A checkerboard on the supine surface (left) and carried onto the prone surface (right)");
+  optional("textures_3d.png",
+           "Checkerboard (top) and circles (bottom); on the supine surface (left), carried onto the prone one (right)");
+  for (int frame = 0; fs::exists(fs::path(dir) / "morph" / MorphName(frame)); ++frame)
+    image(("morph/" + MorphName(frame)).c_str(),
+          ("Morph from supine to prone geometry, frame " + std::to_string(frame)).c_str());
 }
 
 void Findings(const PipelineReportInput& in, HtmlReport& page) {

@@ -15,7 +15,11 @@
 #include "Views/FlatImageCorrelation.h"
 #include "Views/FlatResampling.h"
 #include "Views/FlatSegmentMesh.h"
+#include "Views/EndoluminalRenderer.h"  // RenderDisplayAvailable
 #include "Views/MorphSequence.h"
+#include "Views/SurfaceCamera.h"
+#include "Views/SurfaceRenderer.h"
+#include "Views/SurfaceScene.h"
 
 #include <nlohmann/json.hpp>
 
@@ -133,6 +137,33 @@ void WriteBytes(const std::vector<std::uint8_t>& bytes, const std::string& path)
   if (!f) throw InputError("output picture", path, "cannot be written");
 }
 
+// A rendered view under a title line (no label margin).
+ColourImage Titled(const ColourImage& picture, const std::string& title) { return StackColumn({picture}, {""}, title, 0, 0); }
+
+// Per vertex of `mesh`: the flat width of its segment (0 where the segment was not drawn).
+Eigen::VectorXd SegmentWidths(const TriangleMesh& mesh, const std::array<double, 5>& width) {
+  const auto& id = mesh.pointData.at("SegmentId").values;
+  Eigen::VectorXd w(mesh.V.rows());
+  for (Eigen::Index i = 0; i < w.size(); ++i) {
+    const long k = std::lround(id(i, 0));
+    w(i) = k >= 0 && k < 5 ? width[static_cast<std::size_t>(k)] : 0.0;
+  }
+  return w;
+}
+
+// The faces of `mesh` whose three corners lie in drawn segments (width > 0), and the flat
+// coordinates there (texture scenes need a width everywhere).
+TriangleMesh DrawnPart(const TriangleMesh& mesh, const Eigen::VectorXd& width) {
+  TriangleMesh out;
+  out.V = mesh.V;
+  std::vector<Eigen::Index> keep;
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    if (width(mesh.F(f, 0)) > 0 && width(mesh.F(f, 1)) > 0 && width(mesh.F(f, 2)) > 0) keep.push_back(f);
+  out.F.resize(static_cast<Eigen::Index>(keep.size()), 3);
+  for (std::size_t k = 0; k < keep.size(); ++k) out.F.row(static_cast<Eigen::Index>(k)) = mesh.F.row(keep[k]);
+  return out;
+}
+
 }  // namespace
 
 void RunColonFlatViews(cli::ModuleContext& ctx) {
@@ -147,11 +178,17 @@ void RunColonFlatViews(cli::ModuleContext& ctx) {
   const double ppu = ctx.args.GetDouble("pixelsPerUnit");
   if (frames < 2 || frames > 200) throw Error("morphFrames: must be between 2 and 200");
   if (!(ppu >= 8 && ppu <= 1024)) throw Error("pixelsPerUnit: must be between 8 and 1024");
+  const SurfaceViewDirection view3D = SurfaceViewNamed(ctx.args.Has("view3D") ? ctx.args.GetString("view3D") : std::string("anterior"));
+  // 3D pictures need an X display (VTK renders through GLX here). Slicer always has one; a batch
+  // run without one still gets every other output, and a note and flatviews.json say why not.
+  std::string skip3DReason;
+  if (ctx.args.GetBool("skip3D")) skip3DReason = "skipped on request (--skip3D)";
+  else if (std::string why; !RenderDisplayAvailable(&why)) skip3DReason = why + "; run under xvfb-run -a for the 3D pictures";
   const fs::path regPath = fs::path(rdir) / "registration.vtp", pronePath = fs::path(rdir) / "registration_prone.vtp";
   for (const fs::path& p : {regPath, pronePath})
     if (!fs::is_regular_file(p)) throw InputError("registration", p.string(), "does not exist");
 
-  ctx.progress.Plan({{"Read", 1.0}, {"Segments", 4.0}, {"Pictures", 1.0}, {"Write", 2.0}});
+  ctx.progress.Plan({{"Read", 1.0}, {"Segments", 4.0}, {"Pictures", 1.0}, {"Write", 2.0}, {"Render3D", skip3DReason.empty() ? 3.0 : 0.1}});
   ctx.progress.StartStage("Read", "reading the registration");
   const TriangleMesh supine = io::ReadMesh(regPath.string(), "registration");
   ctx.progress.Report(0.5);
@@ -396,11 +433,84 @@ void RunColonFlatViews(cli::ModuleContext& ctx) {
       m.F = supine.F;
       m.pointData["SegmentId"] = supine.pointData.at("SegmentId");
       m.cellData["Dilatation"] = supine.cellData.at("Dilatation");
-      char name[32];
-      std::snprintf(name, sizeof name, "morph/morph_%03zu.vtp", k);
-      io::WriteMesh(m, stage(name), "morph frame");
+      io::WriteMesh(m, stage("morph/" + MorphFrameName(static_cast<int>(k), ".vtp")), "morph frame");
       ctx.progress.Report(0.5 + 0.45 * (k + 1.0) / times.size());
     }
+  }
+  ctx.progress.EndStage();
+
+  // 3D pictures (paper Figs. 11-12): one fixed camera framing the supine surface, the prone one
+  // and so every morph frame; each picture staged like every other output.
+  ctx.progress.StartStage("Render3D", "rendering the 3D distortion, texture and morph pictures");
+  json views3D;
+  if (skip3DReason.empty()) {
+    const SurfaceRenderOptions ro;  // 360 x 480: the colon is taller than wide from the front
+    const std::array<double, 2> picture{static_cast<double>(ro.width), static_cast<double>(ro.height)};
+    Eigen::MatrixXd framed(supine.V.rows() + pronePosition.rows() + prone.V.rows(), 3);
+    framed << MorphFramingPoints(supine.V, pronePosition), prone.V;
+    const SurfaceCamera camera = FrameSurface(framed, view3D, picture[0] / picture[1], 0.04);
+    SurfaceRenderer renderer(ro);
+    const double renders = 6.0 + frames;
+    double done = 0;
+    auto render = [&](const SurfaceScene& scene) {
+      ColourImage im = renderer.Render(scene, camera);
+      ctx.progress.Report(++done / renders);  // cancel point between pictures
+      return im;
+    };
+    auto write = [&](const ColourImage& im, const std::string& name) {
+      WriteBytes(EncodePng(im), stage(name));
+      views3D["pictures"][name] = {im.width, im.height};
+    };
+    const std::string where = "; " + view3D.name + " view (LPS: looking along " +
+                              (view3D.name == "anterior" ? std::string("+P, superior up, patient's right on the left") :
+                               view3D.name == "posterior" ? std::string("-P, superior up, patient's right on the right") :
+                               view3D.name == "superior" ? std::string("-S from the head, anterior up") :
+                               std::string("the patient's side, superior up")) + ")";
+    std::array<double, 5> widths{0, 0, 0, 0, 0};
+    for (std::size_t k = 0; k < views.size(); ++k) widths[static_cast<std::size_t>(present[k])] = views[k].s.period;
+    {
+      const ColourImage k3 = render(ColouredSurface(supine.V, supine.F, K.col(0), 1.0, kHigh, ColourMapKind::Turbo));
+      const ColourImage t3 = render(ColouredSurface(supine.V, supine.F, DistortionAngle(muArg.col(0)), -kPi / 2, kPi / 2, ColourMapKind::Hsv));
+      write(WithCaption(SideBySide({Titled(k3, "dilatation K"), bar(ro.height, 1.0, kHigh, ColourMapKind::Turbo, "K", "%.3f"),
+                                    Titled(t3, "angle theta"), bar(ro.height, -90.0, 90.0, ColourMapKind::Hsv, "deg", "%.0f")}),
+                        "Distortion of the registration on the supine surface" + where),
+            "distortion_3d.png");
+    }
+    const Eigen::VectorXd sWidth = SegmentWidths(supine, widths), pWidth = SegmentWidths(prone, widths);
+    const TriangleMesh sDrawn = DrawnPart(supine, sWidth), pDrawn = DrawnPart(prone, pWidth);
+    const Eigen::MatrixXd& sUV = PointArray(supine, "SupineFlatUV", 2, regWhat);
+    const Eigen::MatrixXd& pUV = PointArray(prone, "SupineFlatUV", 2, "prone registration mesh '" + pronePath.string() + "'");
+    {
+      std::vector<ColourImage> s3, p3;
+      for (SurfaceTextureKind kind : {SurfaceTextureKind::Checkerboard, SurfaceTextureKind::Circles}) {
+        s3.push_back(render(TexturedSurface(sDrawn.V, sDrawn.F, sUV, sWidth, kind, textures)));
+        p3.push_back(render(TexturedSurface(pDrawn.V, pDrawn.F, pUV, pWidth, kind, textures)));
+      }
+      write(WithCaption(SideBySide({StackColumn(s3, {"", ""}, "supine", 10, 0), StackColumn(p3, {"", ""}, "carried to prone", 10, 0)}),
+                        "Textures of the supine flat domain, carried to prone" + where),
+            "textures_3d.png");
+    }
+    // Morph frames: the supine checkerboard rides on the vertices from the supine to the prone shape.
+    const std::vector<double> times = MorphTimes(static_cast<int>(frames));
+    for (std::size_t k = 0; k < times.size(); ++k) {
+      const Eigen::MatrixXd Vt = MorphFrame(supine.V, pronePosition, times[k]);
+      char caption[96];
+      std::snprintf(caption, sizeof caption, "Morph supine -> prone, t = %.2f (frame %zu of %zu)", times[k], k + 1, times.size());
+      write(WithCaption(render(TexturedSurface(Vt, sDrawn.F, sUV, sWidth, SurfaceTextureKind::Checkerboard, textures)), caption),
+            "morph/" + MorphFrameName(static_cast<int>(k), ".png"));
+    }
+    views3D["rendered"] = true;
+    views3D["view"] = view3D.name;
+    views3D["camera"] = {{"position", {camera.pose.position.x(), camera.pose.position.y(), camera.pose.position.z()}},
+                         {"focalPoint", {camera.pose.focalPoint.x(), camera.pose.focalPoint.y(), camera.pose.focalPoint.z()}},
+                         {"viewUp", {camera.pose.viewUp.x(), camera.pose.viewUp.y(), camera.pose.viewUp.z()}},
+                         {"parallelScale", camera.parallelScale}, {"coordinateSystem", "LPS"}};
+    views3D["renderSize"] = {ro.width, ro.height};
+  } else {
+    views3D["rendered"] = false;
+    views3D["reason"] = skip3DReason;
+    ctx.progress.Note("ColonFlatViews: 3D pictures (distortion_3d.png, textures_3d.png, morph/*.png) not made: " + skip3DReason +
+                      "; distortion.vtp and morph/*.vtp hold the same views for Slicer");
   }
   const Correlation cR = FlatImageCorrelation(allSupine, allRegistered), cU = FlatImageCorrelation(allSupine, allUnregistered);
   json report;
@@ -414,6 +524,7 @@ void RunColonFlatViews(cli::ModuleContext& ctx) {
   report["pixelsPerUnit"] = ppu;
   report["morphFrames"] = frames;
   report["registrationMethod"] = regReport.value("method", std::string("unknown"));
+  report["views3D"] = views3D;
   report["features"] = {{"supine", sFoldsTotal}, {"prone", pFoldsTotal}, {"matched", matchedTotal}, {"found", foundTotal}};
   files.push_back("flatviews.json");
   report["files"] = files;

@@ -18,6 +18,7 @@ import math
 import os
 import shutil
 import struct
+import subprocess
 import sys
 import tempfile
 
@@ -108,6 +109,34 @@ try:
     check(report["pictures"]["flat_pair_registered.png"][1] > total, "registered pair: not all segments stacked")
     check(report["pictures"]["flat_pair_registered.png"][0] > 2 * ppu, "registered pair: not side by side")
 
+    # 3D pictures (the test runs with an X display): present, PNG sizes as reported, one frame
+    # per morph step, the anterior camera (looking along +P, superior up) framing the surfaces.
+    v3 = report.get("views3D", {})
+    check(v3.get("rendered") is True, f"3D pictures not rendered: {v3.get('reason')}")
+    names3d = ["distortion_3d.png", "textures_3d.png"] + [f"morph/morph_{k:03d}.png" for k in range(frames)]
+    for name in names3d:
+        size = png_size(os.path.join(out, name))
+        check(size is not None and list(size) == v3.get("pictures", {}).get(name), f"{name}: PNG {size} vs report {v3.get('pictures', {}).get(name)}")
+        check(name in report["files"], f"{name} not listed in flatviews.json files")
+    check(not os.path.exists(os.path.join(out, f"morph/morph_{frames:03d}.png")), "one morph picture too many")
+    rw, rh = v3["renderSize"]
+    d3 = v3["pictures"]["distortion_3d.png"]
+    check(d3[0] > 2 * rw and d3[1] > rh, f"distortion_3d.png {d3}: not two views of {rw}x{rh} side by side")
+    t3 = v3["pictures"]["textures_3d.png"]
+    check(t3[0] > 2 * rw and t3[1] > 2 * rh, f"textures_3d.png {t3}: not 2 x 2 views")
+    check(len({tuple(v3["pictures"][f"morph/morph_{k:03d}.png"]) for k in range(frames)}) == 1, "morph pictures differ in size")
+    cam = v3["camera"]
+    look = [f - p for f, p in zip(cam["focalPoint"], cam["position"])]
+    check(v3["view"] == "anterior" and look[1] > 0 and abs(look[0]) < 1e-9 and abs(look[2]) < 1e-9 and cam["viewUp"] == [0.0, 0.0, 1.0],
+          f"3D camera is not the anterior one: {cam}")
+    # The camera frames every vertex of both surfaces: the parallel scale covers the height (z)
+    # and width (x) extents of supine and prone points, and not by much more than the larger.
+    allp = points(sup) + points(pro)
+    half_h = (max(p[2] for p in allp) - min(p[2] for p in allp)) / 2
+    half_w = (max(p[0] for p in allp) - min(p[0] for p in allp)) / 2
+    need = max(half_h, half_w * rh / rw)
+    check(need <= cam["parallelScale"] <= 1.1 * need, f"parallel scale {cam['parallelScale']} for half extent {need}")
+
     # distortion.vtp: the registration's K, theta = arg(mu)/2, prone geometry, 0/1 textures.
     d = read(os.path.join(out, "distortion.vtp"))
     check(d.GetNumberOfPoints() == sup.GetNumberOfPoints() and d.GetNumberOfCells() == sup.GetNumberOfCells(), "distortion.vtp size")
@@ -168,8 +197,25 @@ try:
     # Determinism: a second run gives identical files.
     out2 = os.path.join(work, "views2")
     views(reg, out2, "--pixelsPerUnit", str(ppu), "--morphFrames", str(frames))
-    for name in PICTURES + ["distortion.vtp", "flatviews.json", "morph/morph_001.vtp"]:
+    for name in PICTURES + ["distortion.vtp", "flatviews.json", "morph/morph_001.vtp", "distortion_3d.png", "textures_3d.png",
+                            "morph/morph_001.png"]:
         check(filecmp.cmp(os.path.join(out, name), os.path.join(out2, name), shallow=False), f"{name} differs between runs")
+
+    # Without an X display (a batch run), and with --skip3D: everything else, no 3D pictures, a
+    # note on stdout (stderr stays empty: Slicer logs stderr as errors), the reason in the report.
+    env = {k: v for k, v in os.environ.items() if k != "DISPLAY"}
+    for title, extra, environment in (("no display", [], env), ("--skip3D", ["--skip3D"], None)):
+        o = os.path.join(work, "views-" + title.strip("-"))
+        r = subprocess.run([exe, *extra, "--morphFrames", "2", "--pixelsPerUnit", "32", os.path.join(data, "supine"), os.path.join(data, "prone"), reg, o],
+                           capture_output=True, text=True, stdin=subprocess.DEVNULL, env=environment)
+        check(r.returncode == 0 and r.stderr == "", f"{title}: {r.returncode} {r.stderr!r}")
+        check("3D pictures" in r.stdout and "not made" in r.stdout, f"{title}: no note on stdout")
+        rep = json.load(open(os.path.join(o, "flatviews.json")))
+        check(rep["views3D"].get("rendered") is False and rep["views3D"].get("reason"), f"{title}: views3D {rep['views3D']}")
+        check(all(os.path.isfile(os.path.join(o, n)) for n in PICTURES + ["distortion.vtp", "morph/morph_001.vtp"]), f"{title}: outputs missing")
+        check(not any(os.path.exists(os.path.join(o, n)) for n in ["distortion_3d.png", "textures_3d.png", "morph/morph_000.png"]),
+              f"{title}: 3D pictures written")
+        print(f"{title}: {rep['views3D']['reason']}")
 
     # Bad input: no registration.vtp. One stderr line naming it, non-zero exit, nothing written.
     partial = os.path.join(work, "reg-partial")
