@@ -127,8 +127,14 @@ def evaluate(cli, folder, method, out):
     phantom = os.path.join(folder, "phantom")
     reg = os.path.join(out, method)
     os.makedirs(reg, exist_ok=True)
-    # "harmonic-affine": the harmonic method started from the affine map (the former default).
-    options = ["--method", "harmonic", "--initialMap", "affine"] if method == "harmonic-affine" else ["--method", method]
+    # Variants of the harmonic method: "harmonic-affine" starts from the affine map;
+    # "harmonic-threshold" the former fold detection, "harmonic-greedy" the former matching,
+    # "harmonic-before" both (the issue-7 state before graph cut and spectral matching).
+    variants = {"harmonic-affine": ["--initialMap", "affine"],
+                "harmonic-threshold": ["--foldDetection", "threshold"],
+                "harmonic-greedy": ["--matching", "greedy"],
+                "harmonic-before": ["--foldDetection", "threshold", "--matching", "greedy"]}
+    options = ["--method", "harmonic"] + variants[method] if method in variants else ["--method", method]
     values, seconds = run(cli, "ColonRegistration", [os.path.join(flat, "supine"), os.path.join(flat, "prone"), reg,
                                                      "--reportTimes"] + options)
     regvtp = os.path.join(reg, "registration.vtp")

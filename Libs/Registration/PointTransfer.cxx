@@ -9,10 +9,11 @@
 #include <vtkGenericCell.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
-#include <vtkStaticCellLocator.h>
+#include <vtkCellLocator.h>
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 
 namespace colonmap::registration {
 
@@ -22,7 +23,7 @@ struct PointTransfer::Impl {
   Eigen::MatrixXd bary, image;
   Eigen::MatrixXd sourceNormals, targetNormals;
   vtkNew<vtkPolyData> sourcePoly, targetPoly;
-  vtkNew<vtkStaticCellLocator> sourceLocator, targetLocator;
+  vtkNew<vtkCellLocator> sourceLocator, targetLocator;
   Eigen::VectorXd segment, dilatation;
 };
 
@@ -146,8 +147,25 @@ TransferredPoint PointTransfer::Transfer(const Eigen::Vector3d& p) const {
   if (I.dilatation.size() > 0) t.dilatation = I.dilatation(cell);
   const double edge = ((I.source.V.row(f(0)) - I.source.V.row(f(1))).norm() + (I.source.V.row(f(1)) - I.source.V.row(f(2))).norm() +
                        (I.source.V.row(f(2)) - I.source.V.row(f(0))).norm()) / 3.0;
-  t.uncertaintyMm = Uncertainty(edge, t.offset, t.dilatation);
+  const double u90 = SourceValue("Uncertainty90", t), u50 = SourceValue("Uncertainty", t);
+  if (std::isfinite(u90) && std::isfinite(u50)) {
+    t.uncertaintyMm = std::sqrt(u90 * u90 + 0.25 * t.offset * t.offset);
+    t.uncertaintyMedianMm = std::sqrt(u50 * u50 + 0.25 * t.offset * t.offset);
+  } else {
+    t.uncertaintyMm = t.uncertaintyMedianMm = Uncertainty(edge, t.offset, t.dilatation);
+  }
   return t;
+}
+
+double PointTransfer::SourceValue(const std::string& name, const TransferredPoint& t) const {
+  const Impl& I = *impl_;
+  const auto it = I.source.pointData.find(name);
+  if (it == I.source.pointData.end() || it->second.values.rows() != I.source.V.rows() || t.sourceFace < 0)
+    return std::numeric_limits<double>::quiet_NaN();
+  const Eigen::Vector3i f = I.source.F.row(t.sourceFace);
+  double v = 0;
+  for (int k = 0; k < 3; ++k) v += t.sourceBary(k) * it->second.values(f(k), 0);
+  return v;
 }
 
 }  // namespace colonmap::registration

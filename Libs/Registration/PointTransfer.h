@@ -4,7 +4,9 @@
 // that foot is sent across with the per-vertex map (barycentric combination of the images of the
 // triangle's three vertices), snapped to the nearest point of the target wall, and the point's
 // signed offset along the source normal is re-applied along the target normal (a polyp tip or a
-// point in the lumen keeps its height above the wall). VTK (vtkStaticCellLocator) only in the .cxx.
+// point in the lumen keeps its height above the wall). VTK only in the .cxx: vtkCellLocator,
+// whose serial build breaks ties between equally close triangles the same way on every run (the
+// threaded vtkStaticCellLocator does not, and a point on a shared edge then changes triangle).
 #include "Core/TriangleMesh.h"
 
 #include <Eigen/Core>
@@ -25,7 +27,8 @@ struct TransferredPoint {
   Eigen::Vector3d targetBary{1, 0, 0};  // of targetFoot in targetFace
   int segment = -1;           // SegmentId of the foot's nearest vertex (-1 without the array)
   double dilatation = 1.0;    // K of the source face (1 without the array)
-  double uncertaintyMm = 0.0; // see PointTransfer::Uncertainty
+  double uncertaintyMm = 0.0; // 90% bound of the error (mm), see PointTransfer::Transfer
+  double uncertaintyMedianMm = 0.0;  // the predicted median error (mm)
 };
 
 // registration.vtp (supine, with the Prone* arrays) and registration_prone.vtp (`pronePath`, or
@@ -49,7 +52,14 @@ class PointTransfer {
   PointTransfer(const PointTransfer&) = delete;
   PointTransfer& operator=(const PointTransfer&) = delete;
 
+  // uncertaintyMm: with the source arrays Uncertainty90 and Uncertainty (point data, mm, written
+  // by ColonRegistration: RegistrationUncertainty.h) interpolated at the source foot, combined
+  // with the re-attachment term: sqrt(U^2 + (0.5 |offset|)^2); without them the heuristic
+  // Uncertainty() below (registrations written before those arrays existed).
   TransferredPoint Transfer(const Eigen::Vector3d& p) const;
+  // A source point array (1 component) interpolated at a transferred point's source foot; NaN
+  // when the array is missing.
+  double SourceValue(const std::string& name, const TransferredPoint& t) const;
   // Nearest point of the target mesh: face and barycentric coordinates.
   void NearestOnTarget(const Eigen::Vector3d& p, int* face, Eigen::Vector3d* bary) const;
 

@@ -92,6 +92,10 @@ void CorrectHarmonic(const SegmentInput& supine, const SegmentInput& prone, cons
     }
     SubProgress sub(progress, 0.3 + 0.7 * pass / o.passes, 0.3 + 0.7 * (pass + 1) / o.passes);
     r.correction = SolveHarmonicCorrection(supine.flat, etaUV, constraints, o.correction, sub);
+    r.constraints.clear();
+    for (const FlatConstraint& c : constraints)
+      if (!std::binary_search(r.correction.droppedGroups.begin(), r.correction.droppedGroups.end(), c.group))
+        r.constraints.push_back({supine.flat.uv.row(c.vertex).transpose(), c.displacement, c.group});
   }
   r.imageUV = r.correction.imageUV;
   for (int m = 0; m < static_cast<int>(matches.size()); ++m)
@@ -194,6 +198,16 @@ SegmentRegistration RegisterSegment(const SegmentInput& supine, const SegmentInp
     ++r.correction.surfaceRetries;
   }
   r.times.emplace_back("distortion", Seconds(t0));
+  // Per-vertex uncertainty from the map's own evidence (the correction after any damping).
+  SegmentEvidence evidence;
+  evidence.pathCorrelation = r.warped ? r.warp.pathCorrelation : 1.0;
+  evidence.droppedFraction =
+      r.matchesBeforeGuard > 0 ? 1.0 - static_cast<double>(r.matches.size()) / r.matchesBeforeGuard : 0.0;
+  const Eigen::MatrixXd h = method == RegistrationMethod::Harmonic && r.correction.h.rows() == supine.flat.uv.rows()
+                                ? Eigen::MatrixXd(r.imageUV - etaUV)
+                                : Eigen::MatrixXd(Eigen::MatrixXd::Zero(supine.flat.uv.rows(), 2));
+  r.uncertainty = EstimateUncertainty(supine.flat, h, Dilatation(r.mu), r.constraints, evidence);
+  r.times.emplace_back("uncertainty", Seconds(t0));
   progress.Report(1.0);
   return r;
 }

@@ -24,6 +24,7 @@
 #include "Registration/FoldFeatures.h"
 #include "Registration/HarmonicCorrection.h"
 #include "Registration/RectangleAffine.h"
+#include "Registration/RegistrationUncertainty.h"
 #include "Registration/SurfaceMap.h"
 
 #include <string>
@@ -74,6 +75,8 @@ struct SegmentRegistration {
   std::vector<FeatureMatch> matches;  // after the guard (dropped ones removed)
   int matchesBeforeGuard = 0;
   HarmonicCorrectionResult correction;
+  std::vector<ConstraintPoint> constraints;  // Harmonic: the constraints of the kept matches
+  VertexUncertainty uncertainty;             // per supine vertex (RegistrationUncertainty.h)
   std::vector<std::pair<std::string, double>> times;  // seconds: shift, forward, inverse, distortion
 };
 

@@ -127,9 +127,16 @@ void Run(cli::ModuleContext& ctx) {
       const double rt = (backward.Transfer(t.position).position - c.position).norm();
       std::string seg = Segment(c.description);
       if (seg.empty() && t.segment >= 0 && t.segment < 5) seg = kNames[t.segment];
-      perPoint.push_back({{"label", c.label}, {"group", polyps ? "polyps" : seg}, {"error3D", e3}, {"errorFlat", ef},
-                          {"roundTrip", rt}, {"uncertainty", t.uncertaintyMm},
-                          {"mappedFlat", {flatMapped.x(), flatMapped.y()}}, {"trueFlat", {flatTrue.x(), flatTrue.y()}}});
+      json row = {{"label", c.label}, {"group", polyps ? "polyps" : seg}, {"error3D", e3}, {"errorFlat", ef},
+                  {"roundTrip", rt}, {"uncertainty", t.uncertaintyMm}, {"uncertaintyMedian", t.uncertaintyMedianMm},
+                  {"offset", t.offset}, {"dilatation", t.dilatation},
+                  {"mappedFlat", {flatMapped.x(), flatMapped.y()}}, {"trueFlat", {flatTrue.x(), flatTrue.y()}}};
+      // The uncertainty's components where the registration has them (for calibration studies).
+      for (const char* a : {"UncertaintyLoo", "UncertaintyNearMm", "UncertaintyCorrectionMm"}) {
+        const double v = forward.SourceValue(a, t);
+        if (std::isfinite(v)) row[a] = v;
+      }
+      perPoint.push_back(row);
       for (const std::string& g : polyps ? std::vector<std::string>{"polyps"} : std::vector<std::string>{"all", seg}) {
         if (g.empty()) continue;
         Group& G = groups[g];
@@ -156,6 +163,7 @@ void Run(cli::ModuleContext& ctx) {
     std::snprintf(b, sizeof b, "%s\t%ld\t%.3f\t%.3f\t%.3f\t%.3f\t%.5f\t%.5f\t%.5f\t%.5f\t%.4f\n", name.c_str(), a.count, a.mean,
                   a.median, a.p90, a.max, f.mean, f.median, f.p90, f.max, r.mean);
     tsv << b;
+    // uncertainty is ColonTransferPoints' 90% bound: coverage should be about 0.9.
     long covered = 0;
     for (std::size_t i = 0; i < g.e3.size(); ++i) covered += g.e3[i] <= g.uncertainty[i];
     return json{{"error3D", Summary(g.e3)},

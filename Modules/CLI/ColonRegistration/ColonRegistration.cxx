@@ -146,6 +146,8 @@ void Run(cli::ModuleContext& ctx) {
   const bool reportTimes = ctx.args.GetBool("reportTimes");
   HarmonicOptions harmonic;
   harmonic.curvatureAlignment = ctx.args.GetString("initialMap") != "affine";
+  harmonic.folds.method = ctx.args.GetString("foldDetection") == "threshold" ? FoldDetection::Threshold : FoldDetection::GraphCut;
+  harmonic.matching.method = ctx.args.GetString("matching") == "greedy" ? MatchingMethod::Greedy : MatchingMethod::Spectral;
 
   std::vector<int> present;
   std::vector<std::pair<std::string, double>> plan;
@@ -200,6 +202,16 @@ void Run(cli::ModuleContext& ctx) {
     Eigen::VectorXd absMu = r.mu.cwiseAbs(), argMu(r.mu.size());
     for (Eigen::Index f = 0; f < r.mu.size(); ++f) argMu(f) = std::arg(r.mu(f));
     const Eigen::VectorXd K = Dilatation(r.mu);
+    // Uncertainty (RegistrationUncertainty.h): the model's value and its components, per vertex;
+    // the prone side takes the supine values at each prone vertex's inverse image.
+    const VertexUncertainty& U = r.uncertainty;
+    const std::pair<const char*, const Eigen::VectorXd*> uarrays[] = {
+        {"Uncertainty", &U.median}, {"Uncertainty90", &U.bound90}, {"UncertaintyLoo", &U.components.loo},
+        {"UncertaintyNearMm", &U.components.nearMm}, {"UncertaintyCorrectionMm", &U.components.correctionMm}};
+    for (const auto& [name, values] : uarrays) {
+      sp.pointData[name] = DataArray{*values, false};
+      pp.pointData[name] = DataArray{Interpolate(r.inverse, s.flat.F, *values), false};
+    }
     sp.cellData["BeltramiAbs"] = DataArray{absMu, false};
     sp.cellData["BeltramiArg"] = DataArray{argMu, false};
     sp.cellData["Dilatation"] = DataArray{K, false};
@@ -234,6 +246,13 @@ void Run(cli::ModuleContext& ctx) {
       j["alignment"] = {{"used", r.warped}, {"smoothSigmaRows", r.warp.smoothSigmaRows}, {"meanShift", r.warp.MeanShift()}, {"maxAlongDeviation", r.warp.MaxAlongDeviation()},
                         {"pathCorrelation", r.warp.pathCorrelation}, {"affineCorrelation", r.warp.affineCorrelation},
                         {"rows", r.warp.rows}};
+    j["uncertainty"] = {{"pathCorrelation", U.segment.pathCorrelation}, {"droppedFraction", U.segment.droppedFraction},
+                        {"matchesPer100mm", U.segment.matchesPer100mm}, {"mmPerFlatUnit", U.mmPerFlatUnit},
+                        {"medianOfVertices", U.median.size() ? [&] {
+                           std::vector<double> v(U.median.data(), U.median.data() + U.median.size());
+                           std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+                           return v[v.size() / 2];
+                         }() : 0.0}};
     j["supineVertices"] = s.flat.V.rows();
     j["proneVertices"] = p.flat.V.rows();
     j["supineCut"] = s.input.cutTaenia;
