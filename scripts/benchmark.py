@@ -96,6 +96,34 @@ def pipeline(cli, phantom, out):
                                   for k, v in ours.items()}}
 
 
+def flattening_vs_cgal(build, work):
+    """Issue 6: our conformal flattening against CGAL's LSCM on the same cut segments, in one run
+    (Libs/Flattening/Benchmark/FlatteningVsCgal, not built by default: built here if missing).
+    Inputs: the phantom's true-wall T segment at 1 mm x 160 around (117K faces) and at 2 mm x 96;
+    plus, if given in COLONMAP_FLATTEN_BENCH_DIRS (colon-separated 'landmarksDir:segment' pairs
+    joined by ';'), segments of our own CT pipeline. Returns the program's JSON (None if the
+    program cannot be built, e.g. no CGAL)."""
+    exe = os.path.join(build, "Libs", "Flattening", "Benchmark", "FlatteningVsCgal")
+    if not os.path.exists(exe):
+        r = subprocess.run(["cmake", "--build", build, "--target", "FlatteningVsCgal", "-j1"],
+                           capture_output=True, text=True)
+        if r.returncode != 0 or not os.path.exists(exe):
+            print("FlatteningVsCgal: not built:", r.stderr.strip()[-300:])
+            return None
+    out = os.path.join(work, "flattening_vs_cgal.json")
+    cmd = [exe, "--json", out, "--runs", "5", "--phantom", "1", "160", "2", "--phantom", "2", "96", "2"]
+    for pair in filter(None, os.environ.get("COLONMAP_FLATTEN_BENCH_DIRS", "").split(";")):
+        directory, segment = pair.rsplit(":", 1)
+        cmd += [directory, segment]
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    print(r.stdout.strip())
+    if r.returncode != 0:
+        print("FlatteningVsCgal failed:", r.stderr.strip())
+        return None
+    with open(out) as f:
+        return json.load(f)
+
+
 def main():
     repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     parser = argparse.ArgumentParser()
@@ -130,6 +158,7 @@ def main():
         if os.path.exists(os.path.join(cli, "ColonSupineProne")):
             results["pipeline"] = pipeline(cli, clinical, os.path.join(work, "pipeline"))
             print("ColonSupineProne clinical pair", json.dumps(results["pipeline"]["whole"]))
+        results["flatteningVsCgal"] = flattening_vs_cgal(args.build, work)
     finally:
         shutil.rmtree(work, ignore_errors=True)
     os.makedirs(os.path.dirname(os.path.abspath(args.output)), exist_ok=True)

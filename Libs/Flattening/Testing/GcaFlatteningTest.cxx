@@ -13,15 +13,19 @@
 // ColonFlattening does (SplitBoundaryChords first). The segments FindLandmarks itself produced
 // are flattened too. Target: zero flipped triangles and mean |mu| <= 0.02 on every segment.
 //
-// NOT MET (measured, 2 mm, 200K faces): flips 0-830 per segment (at most 0.8% of the faces;
-// 0 only on the short R and A pieces), mean |mu| 0.021-0.058, max |mu| up to 21. The strict
-// test is DISABLED; the enabled one bounds what is measured (APPROXIMATE: flips <= 1% of the
-// faces, mean |mu| <= 0.065) so that a regression still fails. Not yet found out: where the
-// flipped faces lie (suspected: the narrow necks left where the growth cut the atlas's six
-// handles and where colon walls touch, which a conformal map shrinks exponentially).
+// NOT MET (measured, 2 mm, 200K faces, with the intrinsic Delaunay Laplacian and conjugate-flux
+// ends, after PrepareSegment): flips 0-125 per segment (at most 0.25% of the faces; before these
+// changes 0-557, up to 0.8%), mean |mu| 0.021-0.056 (before 0.021-0.058). Where the rest lie:
+// inside tiny regions the conformal map shrinks by orders of magnitude (the narrow necks left
+// where the growth cut the atlas's handles: whole patches map to one point to 1e-5 in uv and
+// their faces' orientation is rounding noise), next to the few intrinsic edges that stay
+// negative because flipping them would make the triangulation non-simplicial. A conformal map
+// cannot avoid the shrinking; the strict test stays DISABLED. The enabled one bounds what is
+// measured (APPROXIMATE: flips <= 1/300 of the faces, mean |mu| <= 0.06) so that a regression
+// fails.
 #include "Flattening/BeltramiCoefficient.h"
 #include "Flattening/ConformalFlattening.h"
-#include "Flattening/SplitBoundaryChords.h"
+#include "Flattening/PrepareSegment.h"
 
 #include "Analysis/GcaModel.h"
 #include "Landmarks/ColonLandmarks.h"
@@ -48,16 +52,18 @@ void FlattenSegments(const char* what, const landmarks::ColonSegments& segs, con
     for (const auto& t : taeniae)
       if (t.segment == s && t.isCut) cut = &t;
     ASSERT_NE(cut, nullptr) << what << " segment " << landmarks::SegmentName(s);
-    const int split = SplitBoundaryChords(mesh);  // appends vertices: the taenia's ids stay valid
     Eigen::VectorXi path(static_cast<Eigen::Index>(cut->vertices.size()));
     for (std::size_t i = 0; i < cut->vertices.size(); ++i) path(static_cast<Eigen::Index>(i)) = cut->vertices[i];
+    // As ColonFlattening: appends vertices on edges only (the taenia's ids stay valid).
+    const PreparedSegment prep = PrepareSegment(mesh, path);
+    const int split = prep.boundaryChords + prep.splitEdges;
     const Eigen::VectorXd arc = mesh.pointData.at("CenterlineArcLength").values.col(0);
     NullProgress np;
     const auto t0 = std::chrono::steady_clock::now();
     const FlatteningResult f = ConformalFlattening(mesh.V, mesh.F, path, arc, FlatteningOptions{}, np);
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const DistortionStats q = SummarizeDistortion(f.cut.V, f.uv, f.cut.F, BeltramiCoefficient(f.cut.V, f.uv, f.cut.F));
-    std::printf("  %s %s: %6ld faces (%d chords split), cut %s, flips %ld, |mu| mean %.4f p99 %.4f max %.3f, "
+    std::printf("  %s %s: %6ld faces (%d edges split), cut %s, flips %ld, |mu| mean %.4f p99 %.4f max %.3f, "
                 "%.0f x %.0f mm, %.3f s\n",
                 what, landmarks::SegmentName(s), q.faces, split, cut->name.c_str(), q.flipped, q.muMean, q.muP99,
                 q.muMax, f.circumferenceMm, f.lengthMm, secs);
@@ -65,8 +71,8 @@ void FlattenSegments(const char* what, const landmarks::ColonSegments& segs, con
       EXPECT_EQ(q.flipped, 0) << what << " " << landmarks::SegmentName(s);
       EXPECT_LE(q.muMean, 0.02) << what << " " << landmarks::SegmentName(s);
     } else {
-      EXPECT_LE(q.flipped, q.faces / 100) << what << " " << landmarks::SegmentName(s);
-      EXPECT_LE(q.muMean, 0.065) << what << " " << landmarks::SegmentName(s);
+      EXPECT_LE(q.flipped, q.faces / 300) << what << " " << landmarks::SegmentName(s);
+      EXPECT_LE(q.muMean, 0.06) << what << " " << landmarks::SegmentName(s);
     }
   }
 }

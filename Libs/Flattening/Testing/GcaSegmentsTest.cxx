@@ -7,6 +7,7 @@
 // cylinders (handles, caps, extra holes) are listed and skipped.
 #include "Flattening/BeltramiCoefficient.h"
 #include "Flattening/ConformalFlattening.h"
+#include "Flattening/PrepareSegment.h"
 #include "Flattening/ShortestCutPath.h"
 #include "IO/MeshIO.h"
 #include "Surface/MeshTopology.h"
@@ -58,10 +59,13 @@ TriangleMesh CleanIntoCylinderCandidate(TriangleMesh m) {
   return out;
 }
 
-// strict: the criterion (zero flips, mean |mu| <= 0.02). NOT MET yet on these coarse
-// atlas meshes (1-19K faces, many obtuse triangles give negative cotangent weights): the
-// strict test is disabled (run it with --gtest_also_run_disabled_tests); the enabled one checks
-// that the maps are valid but for a small fraction of faces.
+// strict: the criterion (zero flips, mean |mu| <= 0.02). Measured on these coarse atlas
+// meshes (1-19K faces, many obtuse triangles): zero flips on all five cylinders since the
+// intrinsic Delaunay Laplacian and conjugate-flux ends (before: 3, 11, 0, 12, 0), but mean |mu|
+// 0.035-0.094 (before 0.030-0.053: |mu| is now measured on the intrinsic Delaunay faces drawn
+// as straight triangles, coarser than the input's on these meshes). The mean |mu| target is NOT
+// MET: the strict test is disabled (run it with --gtest_also_run_disabled_tests); the enabled one
+// asserts zero flips and bounds mean |mu| by 0.1.
 void FlattenGcaSegments(bool strict) {
   const std::filesystem::path dir = COLONMAP_GCA_SEGMENTS;
   if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << "no GCA data at " << dir;
@@ -79,9 +83,11 @@ void FlattenGcaSegments(bool strict) {
     }
     const auto loops = surface::BoundaryLoops(m.F);
     const auto t0 = std::chrono::steady_clock::now();
-    const Eigen::VectorXi path = ShortestCutPath(m.V, m.F, loops[0], loops[1]);
+    Eigen::VectorXi path = ShortestCutPath(m.V, m.F, loops[0], loops[1]);
+    TriangleMesh prepared = m;
+    PrepareSegment(prepared, path);  // as ColonFlattening
     NullProgress np;
-    const FlatteningResult f = ConformalFlattening(m.V, m.F, path, Eigen::VectorXd(), FlatteningOptions{}, np);
+    const FlatteningResult f = ConformalFlattening(prepared.V, prepared.F, path, Eigen::VectorXd(), FlatteningOptions{}, np);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const DistortionStats s = SummarizeDistortion(f.cut.V, f.uv, f.cut.F, BeltramiCoefficient(f.cut.V, f.uv, f.cut.F));
     std::printf("%s: %ld faces, flips %ld, |mu| mean %.4f p99 %.4f max %.4f, %.1f x %.1f mm, %.3f s\n",
@@ -91,7 +97,7 @@ void FlattenGcaSegments(bool strict) {
       EXPECT_EQ(s.flipped, 0) << file;
       EXPECT_LE(s.muMean, 0.02) << file;
     } else {
-      EXPECT_LE(s.flipped, s.faces / 100) << file;
+      EXPECT_EQ(s.flipped, 0) << file;  // measured 0 on all five since the intrinsic Delaunay Laplacian
       EXPECT_LE(s.muMean, 0.1) << file;
     }
     ++flattened;

@@ -6,6 +6,7 @@
 #include "Core/Error.h"
 #include "Flattening/BeltramiCoefficient.h"
 #include "Flattening/ConformalFlattening.h"
+#include "Flattening/PrepareSegment.h"
 #include "Flattening/SplitBoundaryChords.h"
 #include "Flattening/CurvatureImagePng.h"
 #include "Flattening/FlatTextures.h"
@@ -118,8 +119,9 @@ void Run(cli::ModuleContext& ctx) {
     };
     TriangleMesh mesh = io::ReadMesh(segPath, "segment " + X);
     // Faces with all corners on an end loop would collapse under f1's fixed end values.
-    if (const int split = SplitBoundaryChords(mesh))
-      ctx.progress.Note("ColonFlattening: segment " + X + ": " + std::to_string(split) +
+    const int chords = SplitBoundaryChords(mesh);
+    if (chords)
+      ctx.progress.Note("ColonFlattening: segment " + X + ": " + std::to_string(chords) +
                         " edges joining two end-loop vertices split at their midpoint");
     const double readSeconds = lap();
     ctx.progress.Report(0.1);
@@ -130,12 +132,19 @@ void Run(cli::ModuleContext& ctx) {
     std::optional<Eigen::VectorXi> path;
     if (taeniae) path = CutPathOf(*taeniae, id, mesh, taeniaePath.string(), &cutName);
     FlatteningResult r;
+    int keptSplit = 0, negativeLeft = 0;
     try {
       if (!path) {
         ctx.progress.Note("ColonFlattening: WARNING: segment " + X + " has no cut taenia (IsCut = 1): cutting along a shortest edge path");
         const std::vector<std::vector<int>> loops = surface::BoundaryLoops(mesh.F);
         if (loops.size() != 2) throw Error("not a topological cylinder: " + std::to_string(loops.size()) + " boundary loops");
         path = ShortestCutPath(mesh.V, mesh.F, loops[0], loops[1]);
+      }
+      // Kept edges (the cut, a few next to the loops) that would keep a negative weight in the
+      // intrinsic Delaunay triangulation are split at their midpoints (PrepareSegment.h).
+      if (options.laplacian == LaplacianMode::IntrinsicDelaunay) {
+        keptSplit = SplitNonDelaunayKeptEdges(mesh, *path, 4, &negativeLeft);
+        if (auto a = mesh.pointData.find("CenterlineArcLength"); a != mesh.pointData.end()) arc = a->second.values.col(0);
       }
       SubProgress sub(ctx.progress, 0.1, 0.8);
       r = ConformalFlattening(mesh.V, mesh.F, *path, arc, options, sub);
@@ -148,7 +157,8 @@ void Run(cli::ModuleContext& ctx) {
     times.insert(times.end(), r.times.begin(), r.times.end());
     lap();
 
-    // Quality of the map (on the cut mesh, whose faces are the segment's faces in order).
+    // Quality of the map, on the faces it is drawn on (with the intrinsic Delaunay Laplacian
+    // those faces; ConformalFlattening.h).
     const Eigen::VectorXcd mu = BeltramiCoefficient(r.cut.V, r.uv, r.cut.F);
     const DistortionStats q = SummarizeDistortion(r.cut.V, r.uv, r.cut.F, mu);
     times.emplace_back("quality", lap());
@@ -217,6 +227,9 @@ void Run(cli::ModuleContext& ctx) {
     s["cut"] = cutName;
     s["cutPathVertices"] = path->size();
     s["flippedTriangles"] = q.flipped;
+    s["preparation"] = {{"boundaryChordsSplit", chords}, {"keptEdgesSplit", keptSplit},
+                        {"negativeWeightsLeft", negativeLeft}, {"facesChanged", r.changedFaces},
+                        {"edgeGapBoundMm", r.edgeGapBound}, {"nonPositiveFlux", r.nonPositiveFlux}};
     s["beltramiAbs"] = {{"mean", q.muMean}, {"p99", q.muP99}, {"max", q.muMax}};
     s["areaRatio"] = {{"min", q.areaRatioMin}, {"p01", q.areaRatioP01}, {"median", q.areaRatioMedian},
                       {"p99", q.areaRatioP99}, {"max", q.areaRatioMax}, {"logStd", q.logAreaRatioStd}};
@@ -252,6 +265,7 @@ void Run(cli::ModuleContext& ctx) {
   report["missingSegments"] = missing;
   report["widthMode"] = options.width == WidthMode::Circumference ? "circumference" : "unit";
   report["cutCondition"] = options.cut == CutCondition::Periodic ? "periodic" : "dirichlet";
+  report["laplacian"] = options.laplacian == LaplacianMode::IntrinsicDelaunay ? "intrinsicDelaunay" : "mesh";
   report["mmPerPixel"] = mmPerPixel;
   report["flippedTriangles"] = flippedTotal;
   {
