@@ -166,7 +166,7 @@ SegmentRegistration RegisterSegment(const SegmentInput& supine, const SegmentInp
     // One-to-one checks and distortion of the composed map.
     const Eigen::VectorXd area = flattening::SignedFlatAreas(r.imageUV, supine.flat.F);
     std::vector<Eigen::Index> bad;
-    r.mu = SurfaceMapBeltrami(supine.flat.position, supine.flat.F, r.forward.position);
+    r.mu = FlatFrameBeltrami(supine.flat.position, supine.flat.uv, supine.flat.F, r.forward.position);
     const Eigen::MatrixXd proneNormals = surface::VertexNormals(prone.flat.position, prone.flat.F);
     const Eigen::MatrixXd imageNormalAtVertex = Interpolate(r.forward, prone.flat.F, proneNormals);
     for (Eigen::Index f = 0; f < supine.flat.F.rows(); ++f) {

@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 #include <chrono>
+#include <complex>
 #include <limits>
 
 namespace colonmap::registration {
@@ -63,6 +64,32 @@ Eigen::VectorXcd SurfaceMapBeltrami(const Eigen::MatrixXd& V, const Eigen::Matri
     }
   }
   return flattening::BeltramiCoefficient(Vs, uv, Fs);
+}
+
+Eigen::VectorXcd FlatFrameBeltrami(const Eigen::MatrixXd& V, const Eigen::MatrixXd& uv, const Eigen::MatrixXi& F,
+                                   const Eigen::MatrixXd& image) {
+  Eigen::VectorXcd mu = SurfaceMapBeltrami(V, F, image);
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    const Eigen::Vector2d p0 = uv.row(F(f, 0)), p1 = uv.row(F(f, 1)), p2 = uv.row(F(f, 2));
+    Eigen::Matrix2d S;  // source edges in the global (u, v) frame
+    S.col(0) = p1 - p0;
+    S.col(1) = p2 - p0;
+    if (S.determinant() <= 1e-14) continue;
+    // Image edges in the image triangle's own frame: a rotation of the image leaves mu unchanged.
+    const Eigen::Vector3d a = image.row(F(f, 0)), b = image.row(F(f, 1)), c = image.row(F(f, 2));
+    Eigen::Vector3d e1 = b - a;
+    const Eigen::Vector3d n = (b - a).cross(c - a);
+    if (e1.norm() == 0.0 || n.norm() == 0.0) continue;
+    e1.normalize();
+    const Eigen::Vector3d e2 = n.normalized().cross(e1);
+    Eigen::Matrix2d T;
+    T << (b - a).dot(e1), (c - a).dot(e1), (b - a).dot(e2), (c - a).dot(e2);
+    const Eigen::Matrix2d J = T * S.inverse();
+    const std::complex<double> fz(0.5 * (J(0, 0) + J(1, 1)), 0.5 * (J(1, 0) - J(0, 1)));
+    const std::complex<double> fzbar(0.5 * (J(0, 0) - J(1, 1)), 0.5 * (J(1, 0) + J(0, 1)));
+    if (std::abs(fz) > 0.0) mu(f) = fzbar / fz;
+  }
+  return mu;
 }
 
 Eigen::VectorXd Dilatation(const Eigen::VectorXcd& mu) {

@@ -41,6 +41,16 @@ Eigen::MatrixXd Interpolate(const VertexImages& images, const Eigen::MatrixXi& F
 // |mu| < 1 orientation preserving; K = (1 + |mu|) / (1 - |mu|).
 Eigen::VectorXcd SurfaceMapBeltrami(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const Eigen::MatrixXd& image);
 
+// The same map's Beltrami coefficient with the source frame of the flat domain: uv (n x 2) are the
+// source vertices' flat coordinates (u around the colon, v along it), the same frame for every
+// face, so that arg(mu) / 2 is the stretch direction measured from the u axis (DESIGN §2.4: the
+// angle theta); in each triangle's own frame, as SurfaceMapBeltrami does, arg(mu) depends on
+// the order of the triangle's corners. |mu| is that of the map from the flat domain (equal to
+// SurfaceMapBeltrami's up to the conformal distortion of the flattening). Faces whose flat image
+// is degenerate or reversed keep SurfaceMapBeltrami's value.
+Eigen::VectorXcd FlatFrameBeltrami(const Eigen::MatrixXd& V, const Eigen::MatrixXd& uv, const Eigen::MatrixXi& F,
+                                   const Eigen::MatrixXd& image);
+
 // Dilatation K per face from mu (+inf for |mu| >= 1).
 Eigen::VectorXd Dilatation(const Eigen::VectorXcd& mu);
 

@@ -25,6 +25,7 @@
 namespace colonmap::views {
 
 struct EndoluminalRenderer::Impl {
+  RenderDisplay display;  // first: outlives the window that uses it
   vtkNew<vtkRenderWindow> window;
   vtkNew<vtkRenderer> renderer;
   vtkNew<vtkFixedPointVolumeRayCastMapper> mapper;
@@ -46,11 +47,14 @@ EndoluminalRenderer::EndoluminalRenderer(const EndoluminalRenderOptions& options
   if (options_.sampleDistanceMm < 0) throw Error("sample distance: must be >= 0 (0: automatic)");
   const VolumeRenderPreset preset = EndoluminalPreset(options_.preset);
   std::string why;
-  if (!RenderDisplayAvailable(&why))
-    throw Error("rendering: " + why + "; VTK here renders through X (GLX): run under xvfb-run -a");
-
   impl_ = std::make_unique<Impl>();
   Impl& m = *impl_;
+  m.display.display = OpenRenderDisplay(&why);
+  if (!m.display.display) {
+    impl_.reset();
+    throw Error("rendering: " + why + "; VTK here renders through X (GLX): run under xvfb-run -a");
+  }
+  m.window->SetDisplayId(m.display.display);
   for (const auto& p : preset.opacity) m.opacity->AddPoint(p[0], p[1]);
   for (const auto& c : preset.colour) m.colour->AddRGBPoint(c[0], c[1], c[2], c[3]);
   m.property->SetScalarOpacity(m.opacity);

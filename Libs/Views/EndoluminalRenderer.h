@@ -31,6 +31,19 @@ struct EndoluminalRenderOptions {
 
 // True when an X display can be opened; else false with the reason in *why.
 bool RenderDisplayAvailable(std::string* why);
+// An X connection (Display*) for one render window, opened with retries; null with the reason in
+// *why when there is none. Given to VTK with SetDisplayId, closed after the window is gone.
+void* OpenRenderDisplay(std::string* why);
+void CloseRenderDisplay(void* display);
+
+// Owns one such connection (declare it before the render window, so it outlives it).
+struct RenderDisplay {
+  void* display = nullptr;
+  RenderDisplay() = default;
+  RenderDisplay(const RenderDisplay&) = delete;
+  RenderDisplay& operator=(const RenderDisplay&) = delete;
+  ~RenderDisplay() { CloseRenderDisplay(display); }
+};
 
 class EndoluminalRenderer {
  public:

@@ -30,6 +30,7 @@
 namespace colonmap::views {
 
 struct SurfaceRenderer::Impl {
+  RenderDisplay display;  // first: outlives the window that uses it
   vtkNew<vtkRenderWindow> window;
   vtkNew<vtkRenderer> renderer;
   vtkNew<vtkPolyDataMapper> mapper;
@@ -42,9 +43,14 @@ SurfaceRenderer::SurfaceRenderer(const SurfaceRenderOptions& options) : options_
     throw Error("3D picture size " + std::to_string(options_.width) + "x" + std::to_string(options_.height) +
                 ": must be 16..4096 pixels each way");
   std::string why;
-  if (!RenderDisplayAvailable(&why)) throw Error("3D rendering: " + why + "; VTK here renders through X (GLX): run under xvfb-run -a");
   impl_ = std::make_unique<Impl>();
   Impl& m = *impl_;
+  m.display.display = OpenRenderDisplay(&why);
+  if (!m.display.display) {
+    impl_.reset();
+    throw Error("3D rendering: " + why + "; VTK here renders through X (GLX): run under xvfb-run -a");
+  }
+  m.window->SetDisplayId(m.display.display);
   m.actor->SetMapper(m.mapper);
   vtkProperty* p = m.actor->GetProperty();
   p->SetInterpolationToGouraud();

@@ -10,6 +10,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <tuple>
+
+#include <cmath>
 
 using namespace colonmap;
 using namespace colonmap::registration;
@@ -125,6 +128,30 @@ TEST(SurfaceMap, BeltramiOfAKnownAffineMap) {
     EXPECT_NEAR(K(f), 2.0, 1e-12);
   }
   EXPECT_NEAR(std::abs(SurfaceMapBeltrami(V, F, V)(0)), 0.0, 1e-12);
+}
+
+TEST(SurfaceMap, FlatFrameBeltramiGivesTheStretchDirectionWhateverTheCornerOrder) {
+  // Flat source grid; image: stretched by 2 along v (along the colon), or along u, then rotated
+  // into 3D. theta = arg(mu) / 2 is the stretch direction from the u axis: 90 and 0 degrees,
+  // for every face and every order of its corners.
+  Eigen::MatrixXd uv(4, 2), V(4, 3), W(4, 3);
+  uv << 0, 0, 1, 0, 1, 1, 0, 1;
+  V << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0;
+  Eigen::MatrixXi F(6, 3);
+  F << 0, 1, 2, 1, 2, 0, 2, 0, 1, 0, 2, 3, 2, 3, 0, 3, 0, 2;  // two faces, each in 3 rotations
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  for (const auto& [su, sv, theta] : {std::tuple{1.0, 2.0, 90.0}, std::tuple{2.0, 1.0, 0.0}}) {
+    for (int i = 0; i < 4; ++i) W.row(i) = (R * Eigen::Vector3d(su * uv(i, 0), sv * uv(i, 1), 0)).transpose();
+    const Eigen::VectorXcd mu = FlatFrameBeltrami(V, uv, F, W);
+    for (int f = 0; f < F.rows(); ++f) {
+      EXPECT_NEAR(std::abs(mu(f)), 1.0 / 3.0, 1e-12);
+      const double deg = std::arg(mu(f)) / 2.0 * 180.0 / M_PI;
+      EXPECT_NEAR(std::abs(std::remainder(deg - theta, 180.0)), 0.0, 1e-9) << "face " << f;
+    }
+    // The per-triangle frame gives another angle for each corner order: the reason for this.
+    const Eigen::VectorXcd own = SurfaceMapBeltrami(V, F, W);
+    EXPECT_GT(std::abs(std::arg(own(0)) - std::arg(own(1))), 0.1);
+  }
 }
 
 TEST(ErrorStatistics, KnownQuantiles) {
