@@ -1,6 +1,7 @@
 #include "Views/EndoluminalRenderer.h"
 
 #include "Core/Error.h"
+#include "Views/RenderWindowGrab.h"
 
 #include <vtkCamera.h>
 #include <vtkColorTransferFunction.h>
@@ -14,7 +15,6 @@
 #include <vtkUnsignedCharArray.h>
 #include <vtkVolume.h>
 #include <vtkVolumeProperty.h>
-#include <vtkWindowToImageFilter.h>
 
 #include <Eigen/LU>
 
@@ -150,25 +150,16 @@ RgbImage EndoluminalRenderer::Render(const Volume<short>& ct, const CameraPose& 
   cam->SetClippingRange(std::max(0.05, 0.25 * ct.spacing.minCoeff()), 4.0 * options_.cropRadiusMm);
   m.window->Render();
 
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(m.window);
-  grab->SetInputBufferTypeToRGB();
-  grab->ReadFrontBufferOff();
-  grab->Update();
-  vtkImageData* shot = grab->GetOutput();
-  int dims[3];
-  shot->GetDimensions(dims);
-  if (dims[0] != options_.width || dims[1] != options_.height) throw Error(what + ": the render window has the wrong size");
-  const unsigned char* src = static_cast<const unsigned char*>(shot->GetScalarPointer());
+  const std::vector<unsigned char> rgb = GrabRgbTopRowFirst(m.window, options_.width, options_.height, what);
   RgbImage out;
-  out.width = dims[0];
-  out.height = dims[1];
-  out.rgb.resize(static_cast<std::size_t>(out.width) * out.height * 3);
-  const bool mirror = ct.direction.determinant() < 0;
+  out.width = options_.width;
+  out.height = options_.height;
+  out.rgb.resize(rgb.size());
+  const bool mirror = ct.direction.determinant() < 0;  // a left-handed image: undo the mirror
   for (int y = 0; y < out.height; ++y)
     for (int x = 0; x < out.width; ++x) {
       const int sx = mirror ? out.width - 1 - x : x;
-      const unsigned char* s = src + (static_cast<std::size_t>(out.height - 1 - y) * out.width + sx) * 3;
+      const unsigned char* s = rgb.data() + (static_cast<std::size_t>(y) * out.width + sx) * 3;
       std::copy(s, s + 3, &out.rgb[(static_cast<std::size_t>(y) * out.width + x) * 3]);
     }
   // Drop the cropped copy now rather than at the next view.

@@ -1,7 +1,8 @@
 #include "Views/SurfaceRenderer.h"
 
 #include "Core/Error.h"
-#include "Views/EndoluminalRenderer.h"  // RenderDisplayAvailable
+#include "Views/EndoluminalRenderer.h"  // OpenRenderDisplay
+#include "Views/RenderWindowGrab.h"
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
@@ -22,7 +23,6 @@
 #include <vtkRenderer.h>
 #include <vtkTexture.h>
 #include <vtkUnsignedCharArray.h>
-#include <vtkWindowToImageFilter.h>
 
 #include <array>
 #include <string>
@@ -164,21 +164,12 @@ ColourImage SurfaceRenderer::Render(const SurfaceScene& scene, const SurfaceCame
   cam->SetClippingRange(camera.nearClip, camera.farClip);
   m.window->Render();
 
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(m.window);
-  grab->SetInputBufferTypeToRGB();
-  grab->ReadFrontBufferOff();
-  grab->Update();
-  vtkImageData* shot = grab->GetOutput();
-  int dims[3];
-  shot->GetDimensions(dims);
-  if (dims[0] != options_.width || dims[1] != options_.height) throw Error("3D picture: the render window has the wrong size");
-  const unsigned char* src = static_cast<const unsigned char*>(shot->GetScalarPointer());
-  ColourImage out(dims[0], dims[1], {0, 0, 0});
+  const std::vector<unsigned char> rgb = GrabRgbTopRowFirst(m.window, options_.width, options_.height, "3D picture");
+  ColourImage out(options_.width, options_.height, {0, 0, 0});
   for (int y = 0; y < out.height; ++y)
     for (int x = 0; x < out.width; ++x) {
-      const unsigned char* s = src + (static_cast<std::size_t>(out.height - 1 - y) * out.width + x) * 3;  // VTK: bottom row first
-      out.Set(x, y, {s[2], s[1], s[0]});
+      const unsigned char* s = rgb.data() + (static_cast<std::size_t>(y) * out.width + x) * 3;
+      out.Set(x, y, {s[2], s[1], s[0]});  // RGB -> BGR
     }
   // Let go of the mesh now rather than at the next picture.
   m.mapper->RemoveAllInputs();
