@@ -1,5 +1,7 @@
 // The X display check of EndoluminalRenderer.h, apart from every Eigen/VTK header: Xlib.h
 // defines macros (Success, Status, None, Bool) that clash with them.
+#include "Core/Error.h"
+
 #include <X11/Xlib.h>
 
 #include <chrono>
@@ -28,6 +30,13 @@ void* OpenRenderDisplay(std::string* why) {
 
 void CloseRenderDisplay(void* display) {
   if (display) XCloseDisplay(static_cast<Display*>(display));
+}
+
+void* OpenRenderDisplayOrThrow(const std::string& what) {
+  std::string why;
+  void* display = OpenRenderDisplay(&why);
+  if (!display) throw Error(what + ": " + why + "; VTK here renders through X (GLX): run under xvfb-run -a");
+  return display;
 }
 
 bool RenderDisplayAvailable(std::string* why) {

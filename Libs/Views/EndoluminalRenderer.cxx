@@ -46,14 +46,9 @@ EndoluminalRenderer::EndoluminalRenderer(const EndoluminalRenderOptions& options
   if (!(options_.cropRadiusMm > 5)) throw Error("crop radius: must be more than 5 mm");
   if (options_.sampleDistanceMm < 0) throw Error("sample distance: must be >= 0 (0: automatic)");
   const VolumeRenderPreset preset = EndoluminalPreset(options_.preset);
-  std::string why;
   impl_ = std::make_unique<Impl>();
   Impl& m = *impl_;
-  m.display.display = OpenRenderDisplay(&why);
-  if (!m.display.display) {
-    impl_.reset();
-    throw Error("rendering: " + why + "; VTK here renders through X (GLX): run under xvfb-run -a");
-  }
+  m.display.display = OpenRenderDisplayOrThrow("rendering");  // a throw here frees impl_ with the object
   m.window->SetDisplayId(m.display.display);
   for (const auto& p : preset.opacity) m.opacity->AddPoint(p[0], p[1]);
   for (const auto& c : preset.colour) m.colour->AddRGBPoint(c[0], c[1], c[2], c[3]);

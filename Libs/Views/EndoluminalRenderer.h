@@ -35,6 +35,8 @@ bool RenderDisplayAvailable(std::string* why);
 // *why when there is none. Given to VTK with SetDisplayId, closed after the window is gone.
 void* OpenRenderDisplay(std::string* why);
 void CloseRenderDisplay(void* display);
+// The same, throwing colonmap::Error "<what>: <why>; ..." when there is no display.
+void* OpenRenderDisplayOrThrow(const std::string& what);
 
 // Owns one such connection (declare it before the render window, so it outlives it).
 struct RenderDisplay {

@@ -42,14 +42,9 @@ SurfaceRenderer::SurfaceRenderer(const SurfaceRenderOptions& options) : options_
   if (options_.width < 16 || options_.height < 16 || options_.width > 4096 || options_.height > 4096)
     throw Error("3D picture size " + std::to_string(options_.width) + "x" + std::to_string(options_.height) +
                 ": must be 16..4096 pixels each way");
-  std::string why;
   impl_ = std::make_unique<Impl>();
   Impl& m = *impl_;
-  m.display.display = OpenRenderDisplay(&why);
-  if (!m.display.display) {
-    impl_.reset();
-    throw Error("3D rendering: " + why + "; VTK here renders through X (GLX): run under xvfb-run -a");
-  }
+  m.display.display = OpenRenderDisplayOrThrow("3D rendering");  // a throw here frees impl_ with the object
   m.window->SetDisplayId(m.display.display);
   m.actor->SetMapper(m.mapper);
   vtkProperty* p = m.actor->GetProperty();

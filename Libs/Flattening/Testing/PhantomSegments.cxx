@@ -3,10 +3,19 @@
 #include "Surface/MeshTopology.h"
 
 #include <cmath>
+#include <cstdlib>
 
 namespace colonmap::flattening::testing {
 
 using namespace colonmap::phantom;
+
+PhantomOptions TrueWallOptions(const char* meshStepMm, const char* pointsAround, const char* seed) {
+  PhantomOptions o;
+  o.meshStepMm = std::atof(meshStepMm);
+  o.meshPointsAround = std::atoi(pointsAround);
+  o.seed = static_cast<std::uint32_t>(std::atoi(seed));
+  return o;
+}
 
 TriangleMesh TrueWallWithArcLength(const ScanGeometry& scan, const PhantomOptions& o) {
   TriangleMesh wall = TrueWall(scan, o);

@@ -20,6 +20,10 @@ struct PhantomSegment {
   std::array<Eigen::VectorXi, 3> taenia;  // TL, TO, TM as vertex indices of mesh, cecal end first
 };
 
+// Phantom options of the test-data drivers' common arguments: <mesh step mm> <points around>
+// <seed> (text, as on their command lines).
+phantom::PhantomOptions TrueWallOptions(const char* meshStepMm, const char* pointsAround, const char* seed);
+
 // The whole true wall with CenterlineArcLength added (the contract's colon_open.vtp).
 TriangleMesh TrueWallWithArcLength(const phantom::ScanGeometry& scan, const phantom::PhantomOptions& o);
 // The five segments of that wall.

@@ -9,6 +9,8 @@
 #include "Registration/FeatureMatching.h"
 #include "Registration/FlipRepair.h"
 
+#include "CylinderSegment.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -21,28 +23,7 @@ namespace {
 
 constexpr double kL = 3.0;
 
-FlatSegment Grid(int nu, int nv) {
-  FlatSegment s;
-  s.period = 1.0;
-  s.uv.resize((nu + 1) * (nv + 1), 2);
-  s.position.resize(s.uv.rows(), 3);
-  for (int j = 0; j <= nv; ++j)
-    for (int i = 0; i <= nu; ++i) {
-      const int k = j * (nu + 1) + i;
-      s.uv.row(k) << double(i) / nu, kL * j / nv;
-      const double a = 2 * M_PI * (i == nu ? 0 : double(i) / nu);
-      s.position.row(k) << 100 / (2 * M_PI) * std::cos(a), 100 / (2 * M_PI) * std::sin(a), 100 * kL * j / nv;
-    }
-  s.F.resize(2 * nu * nv, 3);
-  int f = 0;
-  for (int j = 0; j < nv; ++j)
-    for (int i = 0; i < nu; ++i) {
-      const int a = j * (nu + 1) + i, b = a + 1, c = a + nu + 1, d = c + 1;
-      s.F.row(f++) << a, b, d;
-      s.F.row(f++) << a, d, c;
-    }
-  return s;
-}
+FlatSegment Grid(int nu, int nv) { return registration::testing::CylinderSegment(nu, nv, kL); }
 
 struct Bump {
   double u, v;

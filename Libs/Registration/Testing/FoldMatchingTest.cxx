@@ -6,6 +6,8 @@
 #include "Registration/FoldFeatures.h"
 #include "Registration/RegistrationUncertainty.h"
 
+#include "CylinderSegment.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -140,25 +142,7 @@ TEST(FeatureMatching, SpectralLeavesAnUnsupportedFoldUnmatched) {
 TEST(RegistrationUncertainty, GrowsAwayFromTheMatchesAndNearAnInconsistentOne) {
   // A flat strip 1 x 2 (period 1) on a cylinder of circumference 100 mm: 1 flat unit = 100 mm.
   const int nu = 40, nv = 80;
-  FlatSegment s;
-  s.period = 1.0;
-  s.uv.resize((nu + 1) * (nv + 1), 2);
-  s.position.resize(s.uv.rows(), 3);
-  for (int j = 0; j <= nv; ++j)
-    for (int i = 0; i <= nu; ++i) {
-      const int k = j * (nu + 1) + i;
-      s.uv.row(k) << double(i) / nu, 2.0 * j / nv;
-      const double a = 2 * M_PI * (i == nu ? 0 : double(i) / nu);
-      s.position.row(k) << 100 / (2 * M_PI) * std::cos(a), 100 / (2 * M_PI) * std::sin(a), 200.0 * j / nv;
-    }
-  s.F.resize(2 * nu * nv, 3);
-  int f = 0;
-  for (int j = 0; j < nv; ++j)
-    for (int i = 0; i < nu; ++i) {
-      const int a = j * (nu + 1) + i, b = a + 1, c = a + nu + 1, d = c + 1;
-      s.F.row(f++) << a, b, d;
-      s.F.row(f++) << a, d, c;
-    }
+  const FlatSegment s = colonmap::registration::testing::CylinderSegment(nu, nv, 2.0);
   std::vector<ConstraintPoint> cs;
   int g = 0;
   for (double v = 0.25; v < 1.0; v += 0.25)

@@ -5,6 +5,8 @@
 #include "Registration/FoldFeatures.h"
 #include "Registration/SegmentRegistration.h"
 
+#include "CylinderSegment.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -16,28 +18,7 @@ namespace {
 
 constexpr double kLen = 3.0;
 
-FlatSegment Cylinder(int nu, int nv) {
-  FlatSegment s;
-  s.period = 1.0;
-  s.uv.resize((nu + 1) * (nv + 1), 2);
-  s.position.resize(s.uv.rows(), 3);
-  for (int j = 0; j <= nv; ++j)
-    for (int i = 0; i <= nu; ++i) {
-      const int k = j * (nu + 1) + i;
-      s.uv.row(k) << double(i) / nu, kLen * j / nv;
-      const double a = 2 * M_PI * (i == nu ? 0 : double(i) / nu);  // the cut copies coincide exactly
-      s.position.row(k) << 100 / (2 * M_PI) * std::cos(a), 100 / (2 * M_PI) * std::sin(a), 100 * kLen * j / nv;
-    }
-  s.F.resize(2 * nu * nv, 3);
-  int f = 0;
-  for (int j = 0; j < nv; ++j)
-    for (int i = 0; i < nu; ++i) {
-      const int a = j * (nu + 1) + i, b = a + 1, c = a + nu + 1, d = c + 1;
-      s.F.row(f++) << a, b, d;
-      s.F.row(f++) << a, d, c;
-    }
-  return s;
-}
+FlatSegment Cylinder(int nu, int nv) { return registration::testing::CylinderSegment(nu, nv, kLen); }
 
 // Folds: 3 columns around, every 0.25 along (staggered), elongated around.
 Eigen::VectorXd Folds(const Eigen::MatrixXd& uv) {

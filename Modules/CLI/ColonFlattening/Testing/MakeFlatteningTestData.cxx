@@ -27,10 +27,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    PhantomOptions o;
-    o.meshStepMm = std::atof(argv[2]);
-    o.meshPointsAround = std::atoi(argv[3]);
-    o.seed = static_cast<std::uint32_t>(std::atoi(argv[4]));
+    const PhantomOptions o = ft::TrueWallOptions(argv[2], argv[3], argv[4]);
     const bool hole = argc > 5 && std::string(argv[5]) == "hole";
     const ColonAnatomy anatomy = MakeAnatomy(o);
     for (Posture posture : {Posture::Supine, Posture::Prone}) {
