@@ -4,6 +4,7 @@
 #include "Flattening/BeltramiCoefficient.h"
 #include "Registration/FlatLocator.h"
 #include "Registration/FlipRepair.h"
+#include "Registration/SurfaceFlipRepair.h"
 #include "Surface/MeanCurvature.h"
 
 #include <Eigen/Geometry>
@@ -146,7 +147,7 @@ SegmentRegistration RegisterSegment(const SegmentInput& supine, const SegmentInp
   // after 6 halvings h = 0 (the affine map, one-to-one on flip-free flat maps).
   const Eigen::MatrixXd etaUV = method != RegistrationMethod::Harmonic ? Eigen::MatrixXd()
                                 : r.warped ? r.warp.Apply(supine.flat.uv) : r.eta.Apply(supine.flat.uv);
-  int repairs = 0;
+  int repairs = 0, surfaceMoves = 0;
   for (;;) {
     r.flatFlips = r.surfaceFlips = 0;
     SubProgress forwardProgress(progress, 0.25, 0.55);
@@ -170,17 +171,22 @@ SegmentRegistration RegisterSegment(const SegmentInput& supine, const SegmentInp
     const Eigen::MatrixXd proneNormals = surface::VertexNormals(prone.flat.position, prone.flat.F);
     const Eigen::MatrixXd imageNormalAtVertex = Interpolate(r.forward, prone.flat.F, proneNormals);
     for (Eigen::Index f = 0; f < supine.flat.F.rows(); ++f) {
-      const Eigen::Vector3d a = r.forward.position.row(supine.flat.F(f, 0)), b = r.forward.position.row(supine.flat.F(f, 1)),
-                            c = r.forward.position.row(supine.flat.F(f, 2));
-      const Eigen::Vector3d n = (b - a).cross(c - a);
-      const Eigen::Vector3d ref = imageNormalAtVertex.row(supine.flat.F(f, 0)) + imageNormalAtVertex.row(supine.flat.F(f, 1)) +
-                                  imageNormalAtVertex.row(supine.flat.F(f, 2));
-      const bool flat = area(f) <= 0.0, surface = n.dot(ref) <= 0.0;
+      const bool flat = area(f) <= 0.0, surface = !ImageFacesAlongSurface(supine.flat.F, f, r.forward.position, imageNormalAtVertex);
       r.flatFlips += flat;
       r.surfaceFlips += surface;
       if (flat || surface) bad.push_back(f);
     }
     if (method != RegistrationMethod::Harmonic || bad.empty()) break;
+    // Only 3D reversals (a straight image triangle across target triangles of very different
+    // shape): move single image vertices with the 3D check in view (SurfaceFlipRepair.h) before
+    // anything that changes the map more widely.
+    if (r.flatFlips == 0 && surfaceMoves < 3) {
+      const int moved = RepairSurfaceFlips(r.imageUV, supine.flat.F, prone.flat, proneNormals, r.forward.position,
+                                           imageNormalAtVertex, bad);
+      r.surfaceRepairedVertices += moved;
+      ++surfaceMoves;
+      if (moved > 0) continue;
+    }
     // Reversed faces (inherited from a flattening's own reversed triangles, or made by h): first
     // relax the image locally, on growing patches; then halve h and try again.
     if (repairs < 4) {
@@ -190,7 +196,7 @@ SegmentRegistration RegisterSegment(const SegmentInput& supine, const SegmentInp
       continue;
     }
     if (r.correction.scale == 0.0) break;
-    repairs = 0;
+    repairs = surfaceMoves = 0;
     const bool halve = r.correction.surfaceRetries < 6;  // then h = 0: the initial map alone
     r.correction.scale = halve ? 0.5 * r.correction.scale : 0.0;
     r.correction.h *= halve ? 0.5 : 0.0;

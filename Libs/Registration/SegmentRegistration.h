@@ -70,6 +70,7 @@ struct SegmentRegistration {
   long surfaceFlips = 0;          // supine faces whose 3D image faces against the prone surface
   int repairRounds = 0;           // Harmonic: local relaxations of the image around reversed faces
   long repairedVertices = 0;      // vertices moved by them (summed over rounds)
+  long surfaceRepairedVertices = 0;  // Harmonic: image vertices moved off 3D reversals (SurfaceFlipRepair.h)
   // Harmonic method: folds of both scans, the matches kept by the one-to-one guard, the correction.
   std::vector<FoldFeature> supineFolds, proneFolds;
   std::vector<FeatureMatch> matches;  // after the guard (dropped ones removed)

@@ -240,7 +240,8 @@ void Run(cli::ModuleContext& ctx) {
                        {"matched", r.matches.size()}, {"constraints", r.correction.constraintsUsed},
                        {"droppedByGuard", r.correction.droppedGroups.size()}, {"initialFlips", r.correction.initialFlips},
                        {"solves", r.correction.rounds}, {"hScale", r.correction.scale}, {"surfaceRetries", r.correction.surfaceRetries},
-                       {"repairRounds", r.repairRounds}, {"repairedVertices", r.repairedVertices}, {"matches", m}};
+                       {"repairRounds", r.repairRounds}, {"repairedVertices", r.repairedVertices},
+                       {"surfaceRepairedVertices", r.surfaceRepairedVertices}, {"matches", m}};
     }
     if (!r.warp.supineV.empty())
       j["alignment"] = {{"used", r.warped}, {"smoothSigmaRows", r.warp.smoothSigmaRows}, {"meanShift", r.warp.MeanShift()}, {"maxAlongDeviation", r.warp.MaxAlongDeviation()},
