@@ -90,6 +90,8 @@ Centerline Reversed(const Centerline& c) {
   r.arc = analysis::ArcLength(r.points);
   r.endFirst = c.endSecond;
   r.endSecond = c.endFirst;
+  r.clearanceBeforeMm = c.clearanceBeforeMm;
+  r.clearanceMm = c.clearanceMm;
   return r;
 }
 
@@ -122,9 +124,16 @@ Centerline ComputeCenterline(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
       progress.Report(0.35 + 0.6 * (it + 1) / std::max(1, o.iterations));
   }
   P = SmoothPolyline(ResamplePolyline(P, o.stepMm), o.smoothingMm / o.stepMm);
+  Centerline c;
+  if (o.centre) {
+    SubProgress sub(progress, 0.4, 0.95);
+    const CentringResult centred = CentreInLumen(V, F, P, o.centring, sub);
+    P = SmoothPolyline(ResamplePolyline(centred.points, o.stepMm), o.centredSmoothingMm / o.stepMm);
+    c.clearanceBeforeMm = centred.meanClearanceBefore;
+    c.clearanceMm = centred.meanClearanceAfter;
+  }
   // The level sets run from a to b; keep that orientation (the first sample is near a).
   if ((P.row(0) - V.row(a)).norm() > (P.row(P.rows() - 1) - V.row(a)).norm()) P = P.colwise().reverse().eval();
-  Centerline c;
   c.points = ResamplePolyline(P, o.outputStepMm);
   c.arc = analysis::ArcLength(c.points);
   c.endFirst = a;

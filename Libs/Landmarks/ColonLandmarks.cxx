@@ -181,6 +181,7 @@ std::string SummaryJson(const LandmarkResult& r, bool withTimes) {
                                                          r.flexures.position[k].z()}}};
   }
   j["centerlineLengthMm"] = r.centerline.Length();
+  j["centerlineClearanceMm"] = {{"levelSetCurve", r.centerline.clearanceBeforeMm}, {"centred", r.centerline.clearanceMm}};
   j["flippedInputOrientation"] = r.flippedOrientation;
   j["relabelledFaces"] = r.segments.relabelledFaces;
   j["taeniaMethod"] = "fold-interruption phase tracking (mean curvature > 0 as folds); TO is the cut";

@@ -58,11 +58,11 @@ std::vector<Taenia> FindTaeniae(const ColonSegments& segs, const Eigen::MatrixXd
     for (int w = std::max(0, w0 - half); w <= std::min(nW - 1, w0 + half); ++w) {
       if (std::abs(a - w * o.stepMm) > 0.5 * o.windowMm) continue;
       allA[w][b] += area(v);
-      if (H(v) > 0) foldA[w][b] += area(v);
+      if (H(v) > o.foldCurvature) foldA[w][b] += area(v);
     }
   }
   const int kr = static_cast<int>(std::ceil(3 * o.smoothingDeg / 5.0));
-  std::vector<std::array<double, kPhases>> cost(static_cast<std::size_t>(nW));
+  std::vector<std::array<double, kPhases>> cost(static_cast<std::size_t>(nW)), track(cost.size());
   for (int w = 0; w < nW; ++w) {
     std::array<double, kBins> p{}, q{};
     double fsum = 0, asum = 0;
@@ -80,13 +80,19 @@ std::vector<Taenia> FindTaeniae(const ColonSegments& segs, const Eigen::MatrixXd
     }
     for (int j = 0; j < kPhases; ++j)
       cost[w][j] = mean > 1e-9 ? (q[j] + q[j + kPhases] + q[j + 2 * kPhases]) / (3.0 * mean) : 1.0;
+    // The tracking cost: the same ratio, but with the mean floored, so that a window with
+    // hardly any fold (the caecal pole) adds an almost flat cost and the phase coasts through
+    // it instead of following a few stray fold patches.
+    const double floored = std::max(mean, o.minFoldFraction);
+    for (int j = 0; j < kPhases; ++j)
+      track[w][j] = mean > 1e-9 ? (q[j] + q[j + kPhases] + q[j + 2 * kPhases]) / (3.0 * floored) : 1.0;
   }
   progress.Report(0.4);
 
   // Dynamic programming over windows: fold cost plus a penalty on phase change (mod 120).
   std::vector<std::array<double, kPhases>> acc(static_cast<std::size_t>(nW));
   std::vector<std::array<int, kPhases>> from(static_cast<std::size_t>(nW));
-  acc[0] = cost[0];
+  acc[0] = track[0];
   for (int w = 1; w < nW; ++w)
     for (int j = 0; j < kPhases; ++j) {
       double best = std::numeric_limits<double>::infinity();
@@ -97,7 +103,7 @@ std::vector<Taenia> FindTaeniae(const ColonSegments& segs, const Eigen::MatrixXd
         const double c = acc[w - 1][i] + o.phaseChangePenalty * d * d;
         if (c < best) best = c, arg = i;
       }
-      acc[w][j] = best + cost[w][j];
+      acc[w][j] = best + track[w][j];
       from[w][j] = arg;
     }
   std::vector<int> state(static_cast<std::size_t>(nW));

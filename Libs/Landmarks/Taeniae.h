@@ -4,8 +4,10 @@
 // flattening).
 //
 // Method (a simple form of the paper's idea that haustral folds are interrupted at the
-// taeniae): fold crests are the wall where the mean curvature is positive (bulging into the
-// lumen; the plain wall is about -1/(2r)). Along the colon, in windows of windowMm every stepMm,
+// taeniae): fold crests are the wall where the mean curvature is above foldCurvature (bulging
+// into the lumen; the plain wall is about -1/(2r), and reconstruction ripples make half of a wide
+// caecum's wall slightly positive, so 0 is not a usable threshold: measured on 10 phantom pairs,
+// A coverage 55-100% with 0, 85-100% with 0.1/mm). Along the colon, in windows of windowMm every stepMm,
 // the fraction of fold area is profiled over the angle around the centreline (rotation-
 // minimising frame started anterior (-y) at the cecum, angle increasing from N towards
 // B = T x N with T pointing from the cecum towards the anus). The three taeniae are 120 degrees
@@ -31,6 +33,8 @@ struct TaeniaOptions {
   double smoothingDeg = 8.0;
   double phaseChangePenalty = 0.02;  // DP cost per (5 degrees of phase change)^2, in fold-fraction units
   double lateralSigmaMm = 2.0;       // edge cost 1 + (lateral offset / sigma)^2
+  double foldCurvature = 0.1;        // mean curvature (1/mm) above which the wall counts as fold
+  double minFoldFraction = 0.1;      // floor of a window's mean fold fraction in the tracking cost
 };
 
 struct Taenia {

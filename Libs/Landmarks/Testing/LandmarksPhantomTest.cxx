@@ -113,17 +113,24 @@ TEST_P(LandmarksOnPhantom, MatchesTruth) {
     for (const CurveSamples& tb : trueBands)
       if (tb.name == band.name) truth = &tb;
     ASSERT_NE(truth, nullptr);
-    int near = 0;
+    // Over the true band's extent: the phantom's bands start at s = 0, while our A segment goes
+    // on over the caecal pole to the cut loop; points whose nearest true point is an end of the
+    // true band lie beyond it and are not counted.
+    int near = 0, counted = 0;
     for (int v : band.vertices) {
       const Eigen::RowVector3d p = r.segments.segment[band.segment].V.row(v);
-      near += ((truth->points.rowwise() - p).rowwise().norm().minCoeff() < 8.0) ? 1 : 0;
+      Eigen::Index k = 0;
+      const double d = (truth->points.rowwise() - p).rowwise().norm().minCoeff(&k);
+      if (k == 0 || k == truth->points.rows() - 1) continue;
+      ++counted;
+      near += d < 8.0 ? 1 : 0;
     }
-    const double frac = static_cast<double>(near) / band.vertices.size();
+    const double frac = counted > 0 ? static_cast<double>(near) / counted : 0.0;
     std::printf("[%s seed %d] segment %s %s%s: %.0f%% within 8 mm of the true band, confidence %.2f\n", pname, seed,
                 SegmentName(band.segment), band.name.c_str(), band.isCut ? " (cut)" : "", 100 * frac, band.confidence);
-    // The target is 90% for the cut in A, T, D; measured 88-100% on seeds 2 and 5.
+    // The target: 90% for the cut in A, T, D.
     if (band.isCut && band.segment <= 2) {
-      EXPECT_GT(frac, 0.8) << SegmentName(band.segment);
+      EXPECT_GE(frac, 0.9) << SegmentName(band.segment);
     }
   }
 }
