@@ -92,6 +92,7 @@ Centerline Reversed(const Centerline& c) {
   r.endSecond = c.endFirst;
   r.clearanceBeforeMm = c.clearanceBeforeMm;
   r.clearanceMm = c.clearanceMm;
+  r.uncentred = c.uncentred.colwise().reverse();
   return r;
 }
 
@@ -125,7 +126,9 @@ Centerline ComputeCenterline(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
   }
   P = SmoothPolyline(ResamplePolyline(P, o.stepMm), o.smoothingMm / o.stepMm);
   Centerline c;
+  Eigen::MatrixXd first;  // the level-set curve (kept when centring)
   if (o.centre) {
+    first = P;
     SubProgress sub(progress, 0.4, 0.95);
     const CentringResult centred = CentreInLumen(V, F, P, o.centring, sub);
     P = SmoothPolyline(ResamplePolyline(centred.points, o.stepMm), o.centredSmoothingMm / o.stepMm);
@@ -133,7 +136,12 @@ Centerline ComputeCenterline(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
     c.clearanceMm = centred.meanClearanceAfter;
   }
   // The level sets run from a to b; keep that orientation (the first sample is near a).
-  if ((P.row(0) - V.row(a)).norm() > (P.row(P.rows() - 1) - V.row(a)).norm()) P = P.colwise().reverse().eval();
+  const auto fromA = [&](Eigen::MatrixXd& Q) {
+    if (Q.rows() && (Q.row(0) - V.row(a)).norm() > (Q.row(Q.rows() - 1) - V.row(a)).norm()) Q = Q.colwise().reverse().eval();
+  };
+  fromA(P);
+  fromA(first);
+  if (first.rows()) c.uncentred = ResamplePolyline(first, o.outputStepMm);
   c.points = ResamplePolyline(P, o.outputStepMm);
   c.arc = analysis::ArcLength(c.points);
   c.endFirst = a;

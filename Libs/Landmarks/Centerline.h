@@ -11,8 +11,8 @@
 // are fan-shaped and their centroids lie outside the bend, so the passes amplified bends (the
 // phantom centreline grew from 1.3 m to 3 m in three passes); the smoothed level-set centroids
 // alone came within 1-3% of the true length. Those centroids still cut the inside of every
-// bend, so the smoothed curve is then moved onto the lumen's medial line (CentreInLumen.h).
-// The curve runs from endFirst to endSecond; the caller orients it.
+// bend, so the smoothed curve is then moved onto the lumen's medial line (CentreInLumen.h) and
+// smoothed again; the level-set curve is kept as `uncentred`. The curve runs from endFirst to endSecond; the caller orients it.
 #include "Core/Cancel.h"
 #include "Landmarks/CentreInLumen.h"
 
@@ -26,9 +26,9 @@ struct CenterlineOptions {
   double smoothingMm = 8.0;   // Gaussian sigma along the arc
   int iterations = 0;         // re-centring passes (off: slice centroids amplify bends; see .cxx)
   double outputStepMm = 1.0;  // spacing of the returned samples
-  bool centre = false;        // move the curve onto the medial line (CentreInLumen.h; off: see there)
+  bool centre = true;         // move the curve onto the medial line (CentreInLumen.h)
   CentringOptions centring;
-  double centredSmoothingMm = 4.0;  // Gaussian sigma along the arc after centring
+  double centredSmoothingMm = 10.0;  // Gaussian sigma along the arc after centring
 };
 
 struct Centerline {
@@ -37,6 +37,9 @@ struct Centerline {
   int endFirst = -1, endSecond = -1;  // the geodesic extremities (vertex ids)
   // Mean distance to the wall (mm) of the level-set curve and of the returned (centred) curve.
   double clearanceBeforeMm = 0, clearanceMm = 0;
+  // When centred: the smoothed level-set curve before centring (outputStepMm, same direction),
+  // on which the flexure rules were tuned; empty otherwise.
+  Eigen::MatrixXd uncentred;
   double Length() const { return arc.size() ? arc(arc.size() - 1) : 0.0; }
 };
 

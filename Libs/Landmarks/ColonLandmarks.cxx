@@ -1,11 +1,13 @@
 #include "ColonLandmarks.h"
 
+#include "Analysis/MidlineProjection.h"
 #include "Core/Error.h"
 #include "Surface/MeshTopology.h"
 
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 
@@ -40,6 +42,24 @@ std::string Fixed(double v, int digits) {
   return buf;
 }
 
+// The flexure rules run on the level-set curve they were tuned on (its corner cutting is part of
+// what they expect); each flexure is then carried to the nearest point of the centred curve.
+Flexures FlexuresOnCentred(const Centerline& c, const FlexureOptions& options) {
+  const Eigen::VectorXd arc = analysis::ArcLength(c.uncentred);
+  Flexures f = FindFlexures(c.uncentred, arc, options);
+  analysis::ProjectionOptions po;
+  po.excludeBeyondEnds = false;
+  for (int k = 0; k < 4; ++k) {
+    const analysis::MidlineProjection p = analysis::ProjectToMidline(f.position[k].transpose(), c.points, po);
+    f.arc[k] = p.arc(0);
+    const Eigen::Index i = std::clamp<Eigen::Index>(p.segment(0), 0, c.points.rows() - 2);
+    const double len = c.arc(i + 1) - c.arc(i), t = len > 0 ? std::clamp((f.arc[k] - c.arc(i)) / len, 0.0, 1.0) : 0.0;
+    f.sample[k] = static_cast<int>(t < 0.5 ? i : i + 1);
+    f.position[k] = ((1 - t) * c.points.row(i) + t * c.points.row(i + 1)).transpose();
+  }
+  return f;
+}
+
 }  // namespace
 
 LandmarkResult FindLandmarks(TriangleMesh closed, const LandmarkOptions& o, ProgressSink& progress) {
@@ -71,7 +91,7 @@ LandmarkResult FindLandmarks(TriangleMesh closed, const LandmarkOptions& o, Prog
   if (c.points(0, 0) < c.points(c.points.rows() - 1, 0)) c = Reversed(c);
   r.centerline = c;
   lap("centerline");
-  r.flexures = FindFlexures(c.points, c.arc, o.flexures);
+  r.flexures = c.uncentred.rows() ? FlexuresOnCentred(c, o.flexures) : FindFlexures(c.points, c.arc, o.flexures);
   progress.Report(0.45);
   lap("flexures");
   SubProgress ps(progress, 0.45, 0.7);

@@ -186,6 +186,30 @@ std::string CheckCylinder(const Eigen::MatrixXi& F) {
   return t.Summary();
 }
 
+// Per vertex, the arc length of the nearest centreline point within its own band's stretch of
+// the centreline (50 mm beyond its cuts): where two loops of the colon touch (a caecum against
+// the sigmoid) the nearest point of the whole centreline can lie on the other loop.
+Eigen::VectorXd BandArcLength(const Eigen::MatrixXd& V, const std::vector<int>& bandOfVertex, const Eigen::MatrixXd& centerline,
+                              const Eigen::VectorXd& arc, const std::array<double, 6>& cuts) {
+  constexpr double kMarginMm = 50.0;
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(V.rows());
+  for (int b = 0; b < kBands; ++b) {
+    const double lo = (b == 0 ? 0.0 : cuts[b - 1]) - kMarginMm, hi = (b == kBands - 1 ? arc(arc.size() - 1) : cuts[b]) + kMarginMm;
+    Eigen::Index i0 = 0, i1 = arc.size() - 1;
+    while (i0 + 1 < arc.size() && arc(i0 + 1) < lo) ++i0;
+    while (i1 > i0 + 1 && arc(i1 - 1) > hi) --i1;
+    std::vector<Eigen::Index> rows;
+    for (Eigen::Index v = 0; v < V.rows(); ++v)
+      if (bandOfVertex[v] == b) rows.push_back(v);
+    if (rows.empty()) continue;
+    Eigen::MatrixXd P(static_cast<Eigen::Index>(rows.size()), 3);
+    for (std::size_t k = 0; k < rows.size(); ++k) P.row(static_cast<Eigen::Index>(k)) = V.row(rows[k]);
+    const Eigen::VectorXd a = NearestArcLength(P, centerline.middleRows(i0, i1 - i0 + 1));
+    for (std::size_t k = 0; k < rows.size(); ++k) out(rows[k]) = arc(i0) + a(static_cast<Eigen::Index>(k));
+  }
+  return out;
+}
+
 }  // namespace
 
 ColonSegments SplitColon(const TriangleMesh& closed, const Eigen::MatrixXd& centerline, const Eigen::VectorXd& arc,
@@ -246,8 +270,11 @@ ColonSegments SplitColon(const TriangleMesh& closed, const Eigen::MatrixXd& cent
     vseg.values(v) = SegmentOfBand(static_cast<int>(std::max_element(votes[v].begin(), votes[v].end()) - votes[v].begin()));
   fseg.values.resize(static_cast<Eigen::Index>(keptFace.size()), 1);
   for (std::size_t i = 0; i < keptFace.size(); ++i) fseg.values(static_cast<Eigen::Index>(i)) = SegmentOfBand(band[keptFace[i]]);
+  std::vector<int> vband(static_cast<std::size_t>(nOpen));
+  for (Eigen::Index v = 0; v < nOpen; ++v)
+    vband[v] = static_cast<int>(std::max_element(votes[v].begin(), votes[v].end()) - votes[v].begin());
   DataArray varc;
-  varc.values = NearestArcLength(out.open.V, centerline);
+  varc.values = BandArcLength(out.open.V, vband, centerline, arc, cuts);
   out.open.pointData["SegmentId"] = vseg;
   out.open.pointData["CenterlineArcLength"] = varc;
   out.open.cellData["SegmentId"] = fseg;

@@ -30,8 +30,10 @@ struct SegmentOptions {
 
 struct ColonSegments {
   // The opened colon: point data SegmentId (int 0..4 = A,T,D,S,R; a vertex on a cut takes the
-  // segment of most of its faces, ties to the anal side), CenterlineArcLength, and the input's
-  // point arrays; cell data SegmentId.
+  // segment of most of its faces, ties to the anal side), CenterlineArcLength (of the nearest
+  // centreline point within the vertex's own segment and 50 mm beyond its cuts, so that a wall
+  // touching another loop of the colon keeps its own segment's arc), and the input's point
+  // arrays; cell data SegmentId.
   TriangleMesh open;
   std::array<TriangleMesh, 5> segment;  // by SegmentId; point data as `open`
   // For each segment, the index in `open` of each of its vertices.

@@ -11,15 +11,16 @@
 // pipeline's way (voxelised, topology-preserving growth, contour: GenusZeroGcaColon), at 2 mm
 // and 200K faces, which is also the benchmark size (FindLandmarks under 5 s).
 //
-// Measured (2 mm, 200K faces; Flexures.h rules): HF +37.6 mm, SF -10.5 mm, DSJ +29.2 mm.
+// Measured (2 mm, 200K faces; Flexures.h rules on the level-set curve, carried to the centred
+// centreline): HF +34.8 mm, SF -8.2 mm, DSJ +30.8 mm (before centring: +37.6, -10.5, +29.2).
 // Before (exit-angle walks): HF +311 mm (the walk from the cecum fired next to this caecum,
 // whose pole runs horizontally for ~80 mm) and DSJ +512 mm (the walk from SF stopped where this
 // tortuous descending colon first tilts 50 degrees off the vertical, 70 mm below the SF). The
-// HF figure is also limited by the evaluation: our centreline runs up to 17 mm from the atlas
-// midline near the HF (it is less centred: mean clearance to the wall 11.7 mm against the
-// midline's 15.9 mm, and 22% shorter), and the nearest-point projection onto the wiggly midline
-// jumps by 33 mm between centreline samples 6 mm apart there; the same HF rule run on the atlas
-// midline itself lands within 5 mm of the atlas HF.
+// HF figure is also limited by the evaluation: before centring our centreline ran up to 17 mm
+// from the atlas midline near the HF (mean clearance to the wall 11.7 mm against the midline's
+// 15.9 mm, and 22% shorter; centred: 14% shorter), and the nearest-point projection onto the
+// wiggly midline jumps by 33 mm between centreline samples 6 mm apart there; the same HF rule run
+// on the atlas midline itself lands within 5 mm of the atlas HF.
 #include "Landmarks/ColonLandmarks.h"
 
 #include "Analysis/GcaModel.h"
@@ -79,7 +80,9 @@ void CheckGcaLandmarks() {
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("FindLandmarks: %ld faces, %.2f s (", static_cast<long>(g0.colon.F.rows()), secs);
   for (const auto& [name, s] : r.times) std::printf(" %s %.2f", name.c_str(), s);
-  std::printf(" ), centreline %.0f mm, GCA midline anus->AO %.0f mm\n", r.centerline.Length(), g.Arc("AO"));
+  std::printf(" ), centreline %.0f mm, GCA midline anus->AO %.0f mm; mean clearance to the wall %.1f mm (level-set "
+              "curve %.1f mm)\n",
+              r.centerline.Length(), g.Arc("AO"), r.centerline.clearanceMm, r.centerline.clearanceBeforeMm);
 
   // The atlas midline from the anus to the appendix orifice (the appendix is not in the colon).
   const Eigen::MatrixXd midline = g.midline.topRows(g.landmark.at("AO") + 1);
