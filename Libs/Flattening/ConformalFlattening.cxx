@@ -193,7 +193,8 @@ FlatteningResult ConformalFlattening(const Eigen::MatrixXd& V, const Eigen::Matr
     r.edgeFlips = T.flips;
     r.negativeWeightsMesh = T.negativeBefore;
     r.negativeWeightsUsed = T.negativeAfter;
-    L = IntrinsicCotangentLaplacian(T.F, T.lengths, n);
+    const Eigen::MatrixXd weights = IntrinsicCornerWeights(T.F, T.lengths, true);
+    L = CotangentLaplacianFromWeights(T.F, weights, n);
     r.negativeWeightsOnCut = T.negativeFixed;
     cutUsed = CutAlongPath(V, T.F, path);  // same vertex numbering as CutAlongPath(V, F, path)
     // How far the drawn faces can be from the surface: an intrinsic edge is a geodesic of length
@@ -219,8 +220,7 @@ FlatteningResult ConformalFlattening(const Eigen::MatrixXd& V, const Eigen::Matr
       std::set_intersection(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(common));
       r.changedFaces = F.rows() - static_cast<long>(common.size());
     }
-    const Eigen::MatrixXd lengths = T.lengths;
-    cutLaplacian = [lengths](const CutMesh& c) { return IntrinsicCotangentLaplacian(c.F, lengths, c.V.rows()); };
+    cutLaplacian = [weights](const CutMesh& c) { return CotangentLaplacianFromWeights(c.F, weights, c.V.rows()); };
   } else {
     L = surface::CotangentLaplacian(V, F);
     cutLaplacian = [](const CutMesh& c) { return surface::CotangentLaplacian(c.V, c.F); };

@@ -186,15 +186,51 @@ IntrinsicTriangulation IntrinsicDelaunay(const Eigen::MatrixXd& V, const Eigen::
   return T;
 }
 
-Eigen::SparseMatrix<double> IntrinsicCotangentLaplacian(const Eigen::MatrixXi& F, const Eigen::MatrixXd& lengths,
-                                                        Eigen::Index n) {
+Eigen::MatrixXd IntrinsicCornerWeights(const Eigen::MatrixXi& F, const Eigen::MatrixXd& lengths, bool raiseNegative) {
+  Eigen::MatrixXd w(F.rows(), 3);
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k)  // edge k joins corners k and k+1; the angle opposite it is at corner k+2
+      w(f, k) = CotOpposite(lengths(f, k), lengths(f, (k + 1) % 3), lengths(f, (k + 2) % 3));
+  if (!raiseNegative) return w;
+  // Sum per edge (a vertex pair), then raise the shares of the negative ones. Rounding-level
+  // negatives (right angles) stay: they are zeros.
+  constexpr double kFloor = 1e-6, kTolerance = 1e-10;
+  // Corners sorted by their edge (vertex pair): each run is one edge's shares.
+  struct Share {
+    long long edge;
+    Eigen::Index corner;  // f * 3 + k
+  };
+  std::vector<Share> shares;
+  shares.reserve(static_cast<std::size_t>(F.rows()) * 3);
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const long long a = F(f, k), b = F(f, (k + 1) % 3);
+      shares.push_back({std::min(a, b) * (1LL << 32) + std::max(a, b), f * 3 + k});
+    }
+  std::sort(shares.begin(), shares.end(), [](const Share& x, const Share& y) {
+    return x.edge != y.edge ? x.edge < y.edge : x.corner < y.corner;
+  });
+  for (std::size_t i = 0; i < shares.size();) {
+    std::size_t j = i;
+    double sum = 0;
+    for (; j < shares.size() && shares[j].edge == shares[i].edge; ++j) sum += w(shares[j].corner / 3, shares[j].corner % 3);
+    if (sum < -kTolerance) {
+      const double add = (kFloor - sum) / static_cast<double>(j - i);
+      for (std::size_t k = i; k < j; ++k) w(shares[k].corner / 3, shares[k].corner % 3) += add;
+    }
+    i = j;
+  }
+  return w;
+}
+
+Eigen::SparseMatrix<double> CotangentLaplacianFromWeights(const Eigen::MatrixXi& F, const Eigen::MatrixXd& weights,
+                                                          Eigen::Index n) {
   std::vector<Eigen::Triplet<double>> t;
   t.reserve(static_cast<std::size_t>(F.rows()) * 12);
   for (Eigen::Index f = 0; f < F.rows(); ++f)
     for (int k = 0; k < 3; ++k) {
-      // Edge k joins corners k and k+1; the angle opposite it is at corner k+2.
       const int i = F(f, k), j = F(f, (k + 1) % 3);
-      const double w = CotOpposite(lengths(f, k), lengths(f, (k + 1) % 3), lengths(f, (k + 2) % 3));
+      const double w = weights(f, k);
       t.emplace_back(i, j, w);
       t.emplace_back(j, i, w);
       t.emplace_back(i, i, -w);
@@ -203,6 +239,11 @@ Eigen::SparseMatrix<double> IntrinsicCotangentLaplacian(const Eigen::MatrixXi& F
   Eigen::SparseMatrix<double> L(n, n);
   L.setFromTriplets(t.begin(), t.end());
   return L;
+}
+
+Eigen::SparseMatrix<double> IntrinsicCotangentLaplacian(const Eigen::MatrixXi& F, const Eigen::MatrixXd& lengths,
+                                                        Eigen::Index n) {
+  return CotangentLaplacianFromWeights(F, IntrinsicCornerWeights(F, lengths, false), n);
 }
 
 }  // namespace colonmap::flattening

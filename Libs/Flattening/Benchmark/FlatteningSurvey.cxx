@@ -7,7 +7,7 @@
 // LANDMARKS_DIR: a ColonLandmarks output folder (segment_{A,T,D,S,R}.vtp, taeniae.vtp); each
 // segment is prepared as ColonFlattening does (SplitBoundaryChords, cut along the IsCut taenia).
 // --gca: the real colon of the Edinburgh Gut Cell Atlas (EdinGCA_3D_00020, CC BY 4.0), made
-// genus 0 at 2 mm / 200K faces and split at our landmarks and at the atlas's own flexures,
+// genus 0 at 1.5 mm / 200K faces and split at our landmarks and at the atlas's own flexures,
 // exactly as Testing/GcaFlatteningTest.cxx does.
 // Per flipped face it records: a corner on an end loop, a corner on the cut path, its largest
 // angle, and whether one of its edges has a negative cotangent weight on the mesh.
@@ -251,7 +251,7 @@ void GcaSegments(const char* what, const landmarks::ColonSegments& segs, const s
 void Gca(json& out) {
   const std::string dir = std::string(COLONMAP_SHARED_DIR) + "/data/gca-00020";
   const analysis::GcaModel g = analysis::ReadGcaModel(dir);
-  const analysis::GcaGenusZero colon = analysis::GenusZeroGcaColon(analysis::WeldGcaColon(g), 2.0, 200000);
+  const analysis::GcaGenusZero colon = analysis::GenusZeroGcaColon(analysis::WeldGcaColon(g), 1.5, 200000);
   NullProgress np;
   const landmarks::LandmarkResult r = landmarks::FindLandmarks(colon.colon, {}, np);
   GcaSegments("found", r.segments, r.taeniae, out);

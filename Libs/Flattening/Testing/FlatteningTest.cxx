@@ -7,6 +7,7 @@
 #include "Flattening/ConformalFlattening.h"
 #include "Flattening/CutAlongPath.h"
 #include "Flattening/HarmonicFunction.h"
+#include "Flattening/IntrinsicDelaunay.h"
 #include "Flattening/RasterizeFlatImage.h"
 #include "Flattening/ShortestCutPath.h"
 #include "Flattening/SplitBoundaryChords.h"
@@ -16,6 +17,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -172,10 +174,16 @@ TEST(Flattening, HarmonicFunctionsKeepBoundaryValuesAndMaximumPrinciple) {
   EXPECT_LE(d.f2.maxCoeff(), 1.0 + 1e-12);
   // Harmonic: zero Laplacian at every free vertex: interior vertices for f1; for f2 every
   // vertex, the cut included (rows of the two copies summed) and the Neumann ends, except the
-  // one vertex that fixes the constant; for the Dirichlet f2 all but the cut.
-  const Eigen::SparseMatrix<double> L = surface::CotangentLaplacian(t.V, t.F);
+  // one vertex that fixes the constant; for the Dirichlet f2 all but the cut. The Laplacian is
+  // the one the flattening uses: the intrinsic Delaunay one with the cut path kept (f.cut.F are
+  // its faces, in the same order as its edge lengths), negative weights raised.
+  std::vector<std::array<int, 2>> keep;
+  for (Eigen::Index i = 0; i + 1 < path.size(); ++i) keep.push_back({path(i), path(i + 1)});
+  const IntrinsicTriangulation T = IntrinsicDelaunay(t.V, t.F, keep);
+  const Eigen::MatrixXd weights = IntrinsicCornerWeights(T.F, T.lengths, true);
+  const Eigen::SparseMatrix<double> L = CotangentLaplacianFromWeights(T.F, weights, t.V.rows());
   const Eigen::VectorXd r1 = L * f.f1;
-  const Eigen::SparseMatrix<double> Lc = surface::CotangentLaplacian(f.cut.V, f.cut.F);
+  const Eigen::SparseMatrix<double> Lc = CotangentLaplacianFromWeights(f.cut.F, weights, f.cut.V.rows());
   const Eigen::VectorXd r2c = Lc * f.f2, r3 = Lc * d.f2;
   Eigen::VectorXd r2 = Eigen::VectorXd::Zero(n0);
   for (Eigen::Index i = 0; i < f.cut.V.rows(); ++i) r2(f.cut.original(i)) += r2c(i);

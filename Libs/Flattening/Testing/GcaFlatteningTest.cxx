@@ -3,26 +3,25 @@
 // EdinGCA_3D_00020"), ../shared/data/gca-00020.
 //
 // The atlas pieces are welded into one colon and made genus 0 the pipeline's way
-// (Analysis/GcaModel: WeldGcaColon, GenusZeroGcaColon at 2 mm: voxelised, topology-preserving
+// (Analysis/GcaModel: WeldGcaColon, GenusZeroGcaColon at 1.5 mm: voxelised, topology-preserving
 // growth, well-composed repair, contour, quadric decimation to 200K faces, windowed-sinc
 // smoothing); that reconstruction is also what cleans the atlas triangulation (slivers and
 // obtuse triangles of the raw pieces, see GcaSegmentsTest). The landmark stage then gives the
 // centreline; the colon is split at the ATLAS's own landmarks (HF, SF, DSJ projected onto our
 // centreline; the atlas has no RSJ, ours is used) with landmarks::SplitColon, the taeniae are
 // found on those segments, and each segment is flattened cut along its cut taenia (TO), as
-// ColonFlattening does (SplitBoundaryChords first). The segments FindLandmarks itself produced
-// are flattened too. Target: zero flipped triangles and mean |mu| <= 0.02 on every segment.
+// ColonFlattening does (PrepareSegment first). The segments FindLandmarks itself produced are
+// flattened too. Target: zero flipped triangles and mean |mu| <= 0.02 on every segment.
 //
-// NOT MET (measured, 2 mm, 200K faces, with the intrinsic Delaunay Laplacian and conjugate-flux
-// ends, after PrepareSegment): flips 0-125 per segment (at most 0.25% of the faces; before these
-// changes 0-557, up to 0.8%), mean |mu| 0.021-0.056 (before 0.021-0.058). Where the rest lie:
-// inside tiny regions the conformal map shrinks by orders of magnitude (the narrow necks left
-// where the growth cut the atlas's handles: whole patches map to one point to 1e-5 in uv and
-// their faces' orientation is rounding noise), next to the few intrinsic edges that stay
-// negative because flipping them would make the triangulation non-simplicial. A conformal map
-// cannot avoid the shrinking; the strict test stays DISABLED. The enabled one bounds what is
-// measured (APPROXIMATE: flips <= 1/300 of the faces, mean |mu| <= 0.06) so that a regression
-// fails.
+// Measured (1.5 mm, 200K faces, intrinsic Delaunay Laplacian, conjugate-flux ends): 0 flipped
+// faces on all 10 segments; mean |mu| 0.020-0.028 (APPROXIMATE: the 0.02 target is met on D, R
+// and nearly S; the enabled test bounds it at 0.03, the strict one stays DISABLED). Why 1.5 mm:
+// at 2 mm the growth cuts the atlas's handles (where its loops touch) into long thin fingers,
+// which a conformal map shrinks by up to 1e-27 in area; all 418 flips measured there (0-131 per
+// segment) lay in faces shrunk below 1e-5 of the median area factor, where the faces'
+// orientation is rounding noise (a 1.5 mm grid at 400K faces keeps some fingers too: 122
+// flips, all in such faces). A conformal map cannot avoid that shrinking; the input must not
+// have the fingers.
 #include "Flattening/BeltramiCoefficient.h"
 #include "Flattening/ConformalFlattening.h"
 #include "Flattening/PrepareSegment.h"
@@ -42,8 +41,8 @@ namespace {
 
 const std::string kGca = std::string(COLONMAP_SHARED_DIR) + "/data/gca-00020";
 
-// Flattens every segment along its cut taenia; checks flips and mean |mu| (strict: the issue's
-// target; else the approximate bounds above).
+// Flattens every segment along its cut taenia; checks flips (none) and mean |mu| (strict: the
+// issue's 0.02; else the approximate bound above).
 void FlattenSegments(const char* what, const landmarks::ColonSegments& segs, const std::vector<landmarks::Taenia>& taeniae,
                      bool strict) {
   for (int s = 0; s < 5; ++s) {
@@ -67,20 +66,15 @@ void FlattenSegments(const char* what, const landmarks::ColonSegments& segs, con
                 "%.0f x %.0f mm, %.3f s\n",
                 what, landmarks::SegmentName(s), q.faces, split, cut->name.c_str(), q.flipped, q.muMean, q.muP99,
                 q.muMax, f.circumferenceMm, f.lengthMm, secs);
-    if (strict) {
-      EXPECT_EQ(q.flipped, 0) << what << " " << landmarks::SegmentName(s);
-      EXPECT_LE(q.muMean, 0.02) << what << " " << landmarks::SegmentName(s);
-    } else {
-      EXPECT_LE(q.flipped, q.faces / 300) << what << " " << landmarks::SegmentName(s);
-      EXPECT_LE(q.muMean, 0.06) << what << " " << landmarks::SegmentName(s);
-    }
+    EXPECT_EQ(q.flipped, 0) << what << " " << landmarks::SegmentName(s);
+    EXPECT_LE(q.muMean, strict ? 0.02 : 0.03) << what << " " << landmarks::SegmentName(s);
   }
 }
 
 void FlattenGcaColon(bool strict) {
   if (!std::filesystem::is_directory(kGca)) GTEST_SKIP() << "no GCA data at " << kGca;
   const analysis::GcaModel g = analysis::ReadGcaModel(kGca);
-  const analysis::GcaGenusZero colon = analysis::GenusZeroGcaColon(analysis::WeldGcaColon(g), 2.0, 200000);
+  const analysis::GcaGenusZero colon = analysis::GenusZeroGcaColon(analysis::WeldGcaColon(g), 1.5, 200000);
   NullProgress np;
   const landmarks::LandmarkResult r = landmarks::FindLandmarks(colon.colon, {}, np);
   std::printf("GCA colon (Edinburgh Gut Cell Atlas, EdinGCA_3D_00020): %ld faces, centreline %.0f mm\n",
@@ -105,8 +99,8 @@ void FlattenGcaColon(bool strict) {
   FlattenSegments("atlas", segs, taeniae, strict);
 }
 
-TEST(FlatteningGca, RealSegmentsBetweenLandmarksFlattenWithFewFlips) { FlattenGcaColon(false); }
-TEST(FlatteningGca, DISABLED_RealSegmentsBetweenLandmarksFlattenWithoutFlipsAndMeanMuBelow002) { FlattenGcaColon(true); }
+TEST(FlatteningGca, RealSegmentsBetweenLandmarksFlattenWithoutFlips) { FlattenGcaColon(false); }
+TEST(FlatteningGca, DISABLED_RealSegmentsBetweenLandmarksFlattenWithMeanMuBelow002) { FlattenGcaColon(true); }
 
 }  // namespace
 }  // namespace colonmap::flattening

@@ -98,7 +98,9 @@ void FlattenGcaSegments(bool strict) {
       EXPECT_LE(s.muMean, 0.02) << file;
     } else {
       EXPECT_EQ(s.flipped, 0) << file;  // measured 0 on all five since the intrinsic Delaunay Laplacian
-      EXPECT_LE(s.muMean, 0.1) << file;
+      // Coarse pieces (1-19K faces): 0.035-0.106 measured (the 2093-face HF-HF+ piece 0.106
+      // since negative weights are raised in IntrinsicCotangentLaplacian; 0.094 before).
+      EXPECT_LE(s.muMean, 0.12) << file;
     }
     ++flattened;
   }

@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <cstdint>
 #include <map>
 #include <set>
@@ -218,6 +219,53 @@ TEST(IntrinsicDelaunay, ZigZagEndLoopsFoldWithNeumannEndsButNotWithConjugateFlux
   // The same rectangle within discretisation (the aspect belongs to the surface, not to the
   // triangulation or the end condition).
   EXPECT_NEAR(b.lambda / a.lambda, 1.0, 0.05);
+}
+
+}  // namespace
+
+namespace {
+
+// Summed weight per edge (vertex pair) of per-corner weights.
+std::map<std::pair<int, int>, double> EdgeSums(const Eigen::MatrixXi& F, const Eigen::MatrixXd& w) {
+  std::map<std::pair<int, int>, double> sum;
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = F(f, k), b = F(f, (k + 1) % 3);
+      sum[{std::min(a, b), std::max(a, b)}] += w(f, k);
+    }
+  return sum;
+}
+
+TEST(IntrinsicDelaunay, RaisesOnlyTheNegativeEdgesToASmallPositiveWeight) {
+  // The sheared grid with a kept row of edges: some kept edges stay negative.
+  Eigen::MatrixXd P;
+  Eigen::MatrixXi F;
+  ShearedGrid(14, 12, P, F);
+  Eigen::MatrixXd V(P.rows(), 3);
+  for (Eigen::Index v = 0; v < P.rows(); ++v) V.row(v) << P(v, 0), P(v, 1), 0.0;
+  std::vector<std::array<int, 2>> keep;
+  for (int i = 0; i + 1 < 14; ++i) keep.push_back({5 * 14 + i, 5 * 14 + i + 1});
+  const IntrinsicTriangulation T = IntrinsicDelaunay(V, F, keep);
+  const Eigen::MatrixXd raw = IntrinsicCornerWeights(T.F, T.lengths, false);
+  const Eigen::MatrixXd raised = IntrinsicCornerWeights(T.F, T.lengths, true);
+  const auto before = EdgeSums(T.F, raw), after = EdgeSums(T.F, raised);
+  int negative = 0;
+  for (const auto& [edge, w] : before) {
+    if (w < -1e-10) {
+      ++negative;
+      EXPECT_NEAR(after.at(edge), 1e-6, 1e-15);
+    } else {
+      EXPECT_EQ(after.at(edge), w);
+    }
+  }
+  ASSERT_GT(negative, 0);
+  // The Laplacian from the raised weights: symmetric, zero row sums, no negative off-diagonal.
+  const Eigen::SparseMatrix<double> L = CotangentLaplacianFromWeights(T.F, raised, V.rows());
+  EXPECT_LT((Eigen::SparseMatrix<double>(L.transpose()) - L).norm(), 1e-12 * L.norm());
+  EXPECT_LT((L * Eigen::VectorXd::Ones(V.rows())).cwiseAbs().maxCoeff(), 1e-12);
+  for (int c = 0; c < L.outerSize(); ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(L, c); it; ++it)
+      if (it.row() != it.col()) EXPECT_GT(it.value(), -1e-10);
 }
 
 }  // namespace
