@@ -7,9 +7,9 @@
 // on average). Samples outside the lumen climb back in, since the distance is signed. The end
 // samples stay. Closest points come from a VTK cell locator (deterministic). Eigen in and out.
 // Measured (ComputeCenterline's default since then, smoothed at 10 mm afterwards): on the real GCA
-// colon the centreline went from 22% to 14% shorter than the atlas midline and its mean clearance
-// to the wall from 11.4 to 14.9 mm (the midline's: 15.9 mm); on 10 phantom pairs through our CT
-// pipeline the mean distance from the true axis went from 1.4-2.7 to 1.7-2.0 mm. The flexure
+// colon (2 mm grid) the centreline went from 22% to 14% shorter than the atlas midline and its
+// mean clearance to the wall from 11.4 to 14.9 mm (the midline's: 15.9 mm); on 10 phantom pairs
+// through our CT pipeline the mean distance from the true axis went from 1.4-2.7 to 1.7-2.0 mm. The flexure
 // rules still run on the level-set curve (ColonLandmarks.cxx), which they were tuned on.
 #include "Core/Cancel.h"
 
