@@ -34,12 +34,14 @@ struct Phantom {
   Volume<float> label;
 };
 
-std::unique_ptr<Phantom> MakePhantom(const Eigen::Vector3d& spacing, bool withImages) {
+std::unique_ptr<Phantom> MakePhantom(const Eigen::Vector3d& spacing, bool withImages, std::uint32_t seed = 0,
+                                     Posture posture = Posture::Supine) {
     auto q = std::make_unique<Phantom>();
     q->options.spacing = spacing;
     q->options.fluid = false;
+    if (seed > 0) q->options.seed = seed;
     const ColonAnatomy anatomy = MakeAnatomy(q->options);
-    q->scan = std::make_unique<ScanGeometry>(MakeScan(anatomy, Posture::Supine, q->options));
+    q->scan = std::make_unique<ScanGeometry>(MakeScan(anatomy, posture, q->options));
     q->truth = TrueWall(*q->scan, q->options);
     q->truthH = MeanCurvature(q->truth.V, q->truth.F);
     q->length = q->truth.pointData.at("MaterialS").values.maxCoeff();
@@ -253,8 +255,10 @@ TEST(SurfaceReconstruction, Cancels) {
 }
 
 // Benchmark helper, not run by ctest: measures a surface file made by the ColonSurface module from
-// the seed-1 supine phantom (ColonSurfaceMakeTestData) against the true wall.
+// a phantom scan (default the seed-1 supine one, as ColonSurfaceMakeTestData makes) against the
+// true wall.
 //   COLONMAP_SURFACE_EVAL=surface.vtp COLONMAP_SURFACE_SPACING=0.7,0.7,1.0
+//   [COLONMAP_SURFACE_SEED=N] [COLONMAP_SURFACE_POSTURE=prone]
 //   ColonMapSurfaceTests --gtest_also_run_disabled_tests --gtest_filter=*DISABLED_Evaluate*
 TEST(SurfaceReconstruction, DISABLED_EvaluateFile) {
   const char* file = std::getenv("COLONMAP_SURFACE_EVAL");
@@ -262,7 +266,10 @@ TEST(SurfaceReconstruction, DISABLED_EvaluateFile) {
   ASSERT_TRUE(file && spacing);
   double h[3];
   ASSERT_EQ(std::sscanf(spacing, "%lf,%lf,%lf", &h[0], &h[1], &h[2]), 3);
-  const auto p = MakePhantom(Eigen::Vector3d(h[0], h[1], h[2]), false);
+  const char* seed = std::getenv("COLONMAP_SURFACE_SEED");
+  const char* posture = std::getenv("COLONMAP_SURFACE_POSTURE");
+  const auto p = MakePhantom(Eigen::Vector3d(h[0], h[1], h[2]), false, seed ? static_cast<std::uint32_t>(std::atoi(seed)) : 0,
+                             posture && std::string(posture) == "prone" ? Posture::Prone : Posture::Supine);
   const TriangleMesh mesh = io::ReadMesh(file, "surface");
   const Accuracy a = Measure(*p, mesh);
   const TopologyReport t = AnalyzeTopology(mesh.F);
