@@ -21,7 +21,9 @@
 //     point INTO the lumen: each triangle's vertices run counter-clockwise seen from inside the
 //     lumen (the closed surface has negative signed volume).
 //  If the CT surface is not closed genus 0 (partial volume can bridge two lumen parts closer
-//  than the band), it is made again with half the band, then from the label alone (notes).
+//  than the band, where the label cut a handle), it is made again with the label deciding
+//  inside and outside at the voxel centres (the CT placing the surface between them), then
+//  from the label alone (notes). Pinch vertices left by the contour or the decimation are split.
 //  6. Point data "MeanCurvature" (mm^-1, MeanCurvature.h: positive where the wall bulges into
 //     the lumen, such as fold crests; about -1/(2r) on a plain tube of radius r).
 // Progress is reported per stage step; VTK filters are aborted when the host cancels.
@@ -58,7 +60,7 @@ struct SurfaceResult {
   std::vector<long> droppedComponents; // face counts of the components not kept, largest first
   bool usedCT = false;                 // the surface is the CT iso-surface (false: label only)
   // What was retried and why: with a CT, a surface with topology problems is made again with
-  // half the band, and then from the label alone.
+  // the label deciding inside and outside at the voxel centres, and then from the label alone.
   std::vector<std::string> notes;
   // One line per problem found (non-manifold, handles, ...); empty when the surface is closed,
   // genus 0, manifold and consistently oriented.
