@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 
 namespace colonmap::landmarks {
@@ -180,6 +181,25 @@ PolylineSet TaeniaPolylines(const LandmarkResult& r) {
   set.cellData["Confidence"] = conf;
   set.pointData["VertexId"] = vid;
   return set;
+}
+
+std::optional<CutTaenia> CutTaeniaOf(const PolylineSet& taeniae, int segment) {
+  const auto seg = taeniae.cellData.find("SegmentId"), cut = taeniae.cellData.find("IsCut");
+  const auto vid = taeniae.pointData.find("VertexId");
+  if (seg == taeniae.cellData.end() || cut == taeniae.cellData.end() || vid == taeniae.pointData.end())
+    throw Error("needs cell data SegmentId and IsCut and point data VertexId");
+  Eigen::Index offset = 0;
+  for (std::size_t l = 0; l < taeniae.lines.size(); ++l) {
+    const Polyline& line = taeniae.lines[l];
+    const Eigen::Index k = line.points.rows();
+    if (std::lround(seg->second.values(l, 0)) == segment && std::lround(cut->second.values(l, 0)) == 1) {
+      CutTaenia c{line.name, line.points, Eigen::VectorXi(k)};
+      for (Eigen::Index i = 0; i < k; ++i) c.vertices(i) = static_cast<int>(std::lround(vid->second.values(offset + i, 0)));
+      return c;
+    }
+    offset += k;
+  }
+  return std::nullopt;
 }
 
 std::string SummaryJson(const LandmarkResult& r, bool withTimes) {

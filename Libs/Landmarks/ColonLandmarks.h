@@ -13,6 +13,7 @@
 #include "Flexures.h"
 #include "Taeniae.h"
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -47,6 +48,16 @@ LandmarkResult FindLandmarks(TriangleMesh closed, const LandmarkOptions& options
 MarkupList CenterlineMarkups(const LandmarkResult& r, double stepMm = 2.0);
 MarkupList FlexureMarkups(const LandmarkResult& r);
 PolylineSet TaeniaPolylines(const LandmarkResult& r);
+
+// Reading that file back: the cut line (IsCut 1) of segment `segment` (SegmentId), its name,
+// points and segment vertex ids (VertexId); nullopt when the segment has none. Throws
+// colonmap::Error when the arrays are missing.
+struct CutTaenia {
+  std::string name;
+  Eigen::MatrixXd points;  // k x 3
+  Eigen::VectorXi vertices;
+};
+std::optional<CutTaenia> CutTaeniaOf(const PolylineSet& taeniae, int segment);
 // Step times (seconds) only with withTimes: by default the file is the same bytes for the same
 // input (deterministic outputs).
 std::string SummaryJson(const LandmarkResult& r, bool withTimes = false);

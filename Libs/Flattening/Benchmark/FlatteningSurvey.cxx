@@ -21,9 +21,9 @@
 #include "Surface/MeanCurvature.h"
 #include "Surface/MeshTopology.h"
 
+#include "Landmarks/ColonLandmarks.h"
 #ifdef COLONMAP_SURVEY_GCA
 #include "Analysis/GcaModel.h"
-#include "Landmarks/ColonLandmarks.h"
 #endif
 
 #include <Eigen/Geometry>
@@ -41,6 +41,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,20 +56,9 @@ constexpr const char* kNames[5] = {"A", "T", "D", "S", "R"};
 
 // The IsCut line of segment id from taeniae.vtp as segment vertex ids (VertexId point data).
 Eigen::VectorXi CutPath(const PolylineSet& taeniae, int id) {
-  const auto& seg = taeniae.cellData.at("SegmentId").values;
-  const auto& cut = taeniae.cellData.at("IsCut").values;
-  const auto& vid = taeniae.pointData.at("VertexId").values;
-  Eigen::Index offset = 0;
-  for (std::size_t l = 0; l < taeniae.lines.size(); ++l) {
-    const Eigen::Index k = taeniae.lines[l].points.rows();
-    if (std::lround(seg(l, 0)) == id && std::lround(cut(l, 0)) == 1) {
-      Eigen::VectorXi p(k);
-      for (Eigen::Index i = 0; i < k; ++i) p(i) = static_cast<int>(std::lround(vid(offset + i, 0)));
-      return p;
-    }
-    offset += k;
-  }
-  throw Error("no cut taenia for segment " + std::string(kNames[id]));
+  const std::optional<landmarks::CutTaenia> cut = landmarks::CutTaeniaOf(taeniae, id);
+  if (!cut) throw Error("no cut taenia for segment " + std::to_string(id));
+  return cut->vertices;
 }
 
 // before = what ColonFlattening did until now; after = today's defaults.

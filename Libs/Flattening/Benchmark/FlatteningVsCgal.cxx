@@ -15,6 +15,7 @@
 // (mean, p99, max) measured by the same code (Flattening/BeltramiCoefficient.h).
 #include "Core/Error.h"
 #include "Flattening/BeltramiCoefficient.h"
+#include "Landmarks/ColonLandmarks.h"
 #include "Flattening/ConformalFlattening.h"
 #include "Flattening/CutAlongPath.h"
 #include "Flattening/PrepareSegment.h"
@@ -38,6 +39,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -67,20 +69,9 @@ json Quality(const Eigen::MatrixXd& V, const Eigen::MatrixXd& uv, const Eigen::M
 }
 
 Eigen::VectorXi CutPathFromTaeniae(const PolylineSet& taeniae, int id) {
-  const auto& seg = taeniae.cellData.at("SegmentId").values;
-  const auto& cut = taeniae.cellData.at("IsCut").values;
-  const auto& vid = taeniae.pointData.at("VertexId").values;
-  Eigen::Index offset = 0;
-  for (std::size_t l = 0; l < taeniae.lines.size(); ++l) {
-    const Eigen::Index k = taeniae.lines[l].points.rows();
-    if (std::lround(seg(l, 0)) == id && std::lround(cut(l, 0)) == 1) {
-      Eigen::VectorXi p(k);
-      for (Eigen::Index i = 0; i < k; ++i) p(i) = static_cast<int>(std::lround(vid(offset + i, 0)));
-      return p;
-    }
-    offset += k;
-  }
-  throw Error("no cut taenia for segment " + std::to_string(id));
+  const std::optional<landmarks::CutTaenia> cut = landmarks::CutTaeniaOf(taeniae, id);
+  if (!cut) throw Error("no cut taenia for segment " + std::to_string(id));
+  return cut->vertices;
 }
 
 json Compare(const std::string& what, const TriangleMesh& input, const Eigen::VectorXi& inputPath, int runs) {

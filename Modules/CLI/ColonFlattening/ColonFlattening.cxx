@@ -12,6 +12,7 @@
 #include "Flattening/FlatTextures.h"
 #include "Flattening/RasterizeFlatImage.h"
 #include "Flattening/ShortestCutPath.h"
+#include "Landmarks/ColonLandmarks.h"
 #include "IO/ImageIO.h"
 #include "IO/MeshIO.h"
 #include "Surface/MeanCurvature.h"
@@ -34,33 +35,25 @@ using nlohmann::json;
 
 constexpr const char* kNames[5] = {"A", "T", "D", "S", "R"};
 
-// The cut path of segment `id` from taeniae.vtp: the line with SegmentId id and IsCut 1, as
-// vertex indices of the segment mesh (point data VertexId), checked against the mesh.
+// The cut path of segment `id` from taeniae.vtp (landmarks::CutTaeniaOf), checked against the
+// segment mesh: each point must be the vertex its VertexId names.
 std::optional<Eigen::VectorXi> CutPathOf(const PolylineSet& taeniae, int id, const TriangleMesh& mesh,
                                          const std::string& path, std::string* name) {
-  const auto seg = taeniae.cellData.find("SegmentId"), cut = taeniae.cellData.find("IsCut");
-  const auto vid = taeniae.pointData.find("VertexId");
-  if (seg == taeniae.cellData.end() || cut == taeniae.cellData.end() || vid == taeniae.pointData.end())
-    throw InputError("taeniae", path, "needs cell data SegmentId and IsCut and point data VertexId");
-  Eigen::Index offset = 0;
-  for (std::size_t l = 0; l < taeniae.lines.size(); ++l) {
-    const Polyline& line = taeniae.lines[l];
-    const Eigen::Index k = line.points.rows();
-    if (std::lround(seg->second.values(l, 0)) == id && std::lround(cut->second.values(l, 0)) == 1) {
-      Eigen::VectorXi p(k);
-      for (Eigen::Index i = 0; i < k; ++i) {
-        const long v = std::lround(vid->second.values(offset + i, 0));
-        if (v < 0 || v >= mesh.V.rows() || (mesh.V.row(v) - line.points.row(i)).norm() > 1e-3)
-          throw InputError("taeniae", path, "cut taenia of segment " + std::string(kNames[id]) + ": point " +
-                           std::to_string(i) + " is not vertex " + std::to_string(v) + " of the segment mesh");
-        p(i) = static_cast<int>(v);
-      }
-      *name = line.name;
-      return p;
-    }
-    offset += k;
+  std::optional<landmarks::CutTaenia> cut;
+  try {
+    cut = landmarks::CutTaeniaOf(taeniae, id);
+  } catch (const Error& e) {
+    throw InputError("taeniae", path, e.what());
   }
-  return std::nullopt;
+  if (!cut) return std::nullopt;
+  for (Eigen::Index i = 0; i < cut->vertices.size(); ++i) {
+    const int v = cut->vertices(i);
+    if (v < 0 || v >= mesh.V.rows() || (mesh.V.row(v) - cut->points.row(i)).norm() > 1e-3)
+      throw InputError("taeniae", path, "cut taenia of segment " + std::string(kNames[id]) + ": point " +
+                       std::to_string(i) + " is not vertex " + std::to_string(v) + " of the segment mesh");
+  }
+  *name = cut->name;
+  return cut->vertices;
 }
 
 json Times(const std::vector<std::pair<std::string, double>>& times) {
