@@ -8,6 +8,7 @@
 #include "Flattening/CutAlongPath.h"
 #include "Flattening/HarmonicFunction.h"
 #include "Flattening/IntrinsicDelaunay.h"
+#include "Flattening/MidpointSubdivision.h"
 #include "Flattening/RasterizeFlatImage.h"
 #include "Flattening/ShortestCutPath.h"
 #include "Flattening/SplitBoundaryChords.h"
@@ -15,12 +16,14 @@
 #include "Surface/MeanCurvature.h"
 #include "Surface/MeshTopology.h"
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <set>
 #include <string>
 
 namespace {
@@ -144,6 +147,74 @@ TEST(Flattening, BulgedTubeStaysConformal) {
       errU = std::max(errU, std::min(std::fabs(f.uv(i, 0) - a), std::fabs(f.uv(i, 0) - (1 - a))));
     }
   EXPECT_LT(errU, 1e-6);
+}
+
+TEST(Flattening, MidpointSubdivisionKeepsTheSurfaceAndHalvesMu) {
+  // The bulged tube on a coarse grid (edges ~2.6 mm around, 5 mm along): subdivision must not
+  // move the surface, must keep the old vertex ids, the orientation, the cut path and the point
+  // data (linear in z: exact at the midpoints), and the map's |mu| must fall about in proportion
+  // to the edge length (first order).
+  const double h = 100.0;
+  auto radius = [&](double z) { return 10.0 * (1.0 + 0.4 * std::exp(-std::pow((z - h / 2) / 8.0, 2))); };
+  const int n = 24, m = 21;
+  const TriangleMesh t = Tube(radius, h, n, m);
+  auto area = [](const TriangleMesh& x) {
+    double total = 0;
+    for (Eigen::Index f = 0; f < x.F.rows(); ++f) {
+      const Eigen::Vector3d a = x.V.row(x.F(f, 0)), b = x.V.row(x.F(f, 1)), c = x.V.row(x.F(f, 2));
+      total += 0.5 * (b - a).cross(c - a).norm();
+    }
+    return total;
+  };
+  double previousMu = 0.0;
+  for (int levels = 0; levels <= 2; ++levels) {
+    TriangleMesh s = t;
+    Eigen::VectorXi path = StraightPath(n, m);
+    MidpointSubdivision(s, &path, levels);
+    const long edges0 = 3L * n * (m - 1) + n;  // the tube's edges: rings, columns, diagonals
+    if (levels == 1) {
+      EXPECT_EQ(s.F.rows(), 4 * t.F.rows());
+      EXPECT_EQ(s.V.rows(), t.V.rows() + edges0);
+    }
+    EXPECT_TRUE(s.V.topRows(t.V.rows()).isApprox(t.V));
+    EXPECT_NEAR(area(s), area(t), 1e-9 * area(t));
+    const surface::TopologyReport topo = surface::AnalyzeTopology(s.F);
+    EXPECT_EQ(topo.euler, 0);
+    EXPECT_EQ(topo.boundaryLoops, 2);
+    EXPECT_EQ(topo.inconsistentEdges, 0);
+    // Every face's normal points the same way round as the tube's (all inwards here).
+    for (Eigen::Index f = 0; f < s.F.rows(); ++f) {
+      const Eigen::Vector3d a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
+      const Eigen::Vector3d centre = (a + b + c) / 3, normal = (b - a).cross(c - a);
+      ASSERT_LT(normal.x() * centre.x() + normal.y() * centre.y(), 0.0) << "face " << f;
+    }
+    // The path keeps its ends and its length, and joins each vertex to the next by an edge.
+    ASSERT_EQ(path.size(), (m - 1) * (1 << levels) + 1);
+    EXPECT_EQ(path(0), 0);
+    EXPECT_EQ(path(path.size() - 1), (m - 1) * n);
+    const std::vector<surface::MeshEdge> meshEdges = surface::MeshEdges(s.F);
+    std::set<std::pair<int, int>> edgeSet;
+    for (const surface::MeshEdge& e : meshEdges) edgeSet.insert({std::min(e.a, e.b), std::max(e.a, e.b)});
+    for (Eigen::Index i = 0; i + 1 < path.size(); ++i)
+      EXPECT_TRUE(edgeSet.count({std::min(path(i), path(i + 1)), std::max(path(i), path(i + 1))})) << i;
+    const Eigen::VectorXd arc = s.pointData.at("CenterlineArcLength").values.col(0);
+    EXPECT_LT((arc - s.V.col(2)).cwiseAbs().maxCoeff(), 1e-12);
+    const DistortionStats q = Stats(Flatten(s, path));
+    std::printf("bulged tube, %d subdivision(s): %ld faces, flips %ld, |mu| mean %.5f max %.5f\n", levels, q.faces,
+                q.flipped, q.muMean, q.muMax);
+    EXPECT_EQ(q.flipped, 0);
+    if (levels > 0) {
+      EXPECT_LT(q.muMean, 0.65 * previousMu) << levels;
+      EXPECT_GT(q.muMean, 0.2 * previousMu) << levels;  // first order, not exact: the facets stay
+    }
+    previousMu = q.muMean;
+  }
+  // A path that leaves the mesh's edges is refused.
+  TriangleMesh s = t;
+  Eigen::VectorXi bad(2);
+  bad << 0, 2 * n + 5;
+  EXPECT_THROW(MidpointSubdivision(s, &bad, 1), Error);
+  EXPECT_EQ(s.F.rows(), t.F.rows());  // and the mesh is left as it was
 }
 
 TEST(Flattening, HarmonicFunctionsKeepBoundaryValuesAndMaximumPrinciple) {

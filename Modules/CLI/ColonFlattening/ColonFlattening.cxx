@@ -6,6 +6,7 @@
 #include "Core/Error.h"
 #include "Flattening/BeltramiCoefficient.h"
 #include "Flattening/ConformalFlattening.h"
+#include "Flattening/MidpointSubdivision.h"
 #include "Flattening/PrepareSegment.h"
 #include "Flattening/SplitBoundaryChords.h"
 #include "Flattening/CurvatureImagePng.h"
@@ -73,6 +74,8 @@ void Run(cli::ModuleContext& ctx) {
   const double mmPerPixel = ctx.args.GetDouble("mmPerPixel");
   if (!(mmPerPixel > 0)) throw Error("mmPerPixel: must be positive");
   const bool textures = ctx.args.GetBool("textures"), reportTimes = ctx.args.GetBool("reportTimes");
+  const long subdivisions = ctx.args.GetInt("subdivisions");
+  if (subdivisions < 0 || subdivisions > 3) throw Error("subdivisions: must be 0, 1, 2 or 3");
 
   std::vector<int> present;
   std::vector<std::pair<std::string, double>> plan;
@@ -132,6 +135,11 @@ void Run(cli::ModuleContext& ctx) {
         const std::vector<std::vector<int>> loops = surface::BoundaryLoops(mesh.F);
         if (loops.size() != 2) throw Error("not a topological cylinder: " + std::to_string(loops.size()) + " boundary loops");
         path = ShortestCutPath(mesh.V, mesh.F, loops[0], loops[1]);
+      }
+      // Finer faces on the same surface (MidpointSubdivision.h): |mu| halves per level.
+      if (subdivisions > 0) {
+        MidpointSubdivision(mesh, &*path, static_cast<int>(subdivisions));
+        if (auto a = mesh.pointData.find("CenterlineArcLength"); a != mesh.pointData.end()) arc = a->second.values.col(0);
       }
       // Kept edges (the cut, a few next to the loops) that would keep a negative weight in the
       // intrinsic Delaunay triangulation are split at their midpoints (PrepareSegment.h).
@@ -220,7 +228,7 @@ void Run(cli::ModuleContext& ctx) {
     s["cut"] = cutName;
     s["cutPathVertices"] = path->size();
     s["flippedTriangles"] = q.flipped;
-    s["preparation"] = {{"boundaryChordsSplit", chords}, {"keptEdgesSplit", keptSplit},
+    s["preparation"] = {{"subdivisions", subdivisions}, {"boundaryChordsSplit", chords}, {"keptEdgesSplit", keptSplit},
                         {"negativeWeightsLeft", negativeLeft}, {"facesChanged", r.changedFaces},
                         {"edgeGapBoundMm", r.edgeGapBound}, {"nonPositiveFlux", r.nonPositiveFlux}};
     s["beltramiAbs"] = {{"mean", q.muMean}, {"p99", q.muP99}, {"max", q.muMax}};
@@ -260,6 +268,7 @@ void Run(cli::ModuleContext& ctx) {
   report["cutCondition"] = options.cut == CutCondition::Periodic ? "periodic" : "dirichlet";
   report["laplacian"] = options.laplacian == LaplacianMode::IntrinsicDelaunay ? "intrinsicDelaunay" : "mesh";
   report["mmPerPixel"] = mmPerPixel;
+  report["subdivisions"] = subdivisions;
   report["flippedTriangles"] = flippedTotal;
   {
     const std::string p = ctx.outputs.Stage((fs::path(out) / "flattening.json").string(), "output flattening.json");

@@ -100,6 +100,26 @@ try:
               f"{x}: the Dirichlet cut should distort more than the periodic one")
     check(rep["cutCondition"] == "dirichlet" and rep["widthMode"] == "circumference", "options not reported")
 
+    # One subdivision: four times the faces on the same surface, |mu| about halved, no flips,
+    # the same rectangle (width and length within the discretisation).
+    sub = os.path.join(work, "sub")
+    r = run("--subdivisions", "1", os.path.join(fixture, "supine"), sub)
+    check(r.returncode == 0 and r.stderr == "", f"subdivisions run: {r.returncode} {r.stderr}")
+    rep = json.load(open(os.path.join(sub, "flattening.json")))
+    check(rep["subdivisions"] == 1 and base["subdivisions"] == 0, "subdivisions not reported")
+    for x, s in rep["segments"].items():
+        b = base["segments"][x]
+        check(s["preparation"]["subdivisions"] == 1, f"subdivided {x}: preparation {s['preparation']}")
+        check(s["faces"] >= 4 * landmarks["segments"][x]["faces"], f"subdivided {x}: {s['faces']} faces")
+        check(s["flippedTriangles"] == 0, f"subdivided {x}: {s['flippedTriangles']} flips")
+        check(0.3 * b["beltramiAbs"]["mean"] < s["beltramiAbs"]["mean"] < 0.7 * b["beltramiAbs"]["mean"],
+              f"subdivided {x}: |mu| {s['beltramiAbs']['mean']} vs {b['beltramiAbs']['mean']}")
+        check(abs(s["lengthMm"] - b["lengthMm"]) < 0.02 * b["lengthMm"] and abs(s["widthMm"] - b["widthMm"]) < 0.02 * b["widthMm"],
+              f"subdivided {x}: {s['widthMm']} x {s['lengthMm']} vs {b['widthMm']} x {b['lengthMm']} mm")
+    r = run("--subdivisions", "4", os.path.join(fixture, "supine"), os.path.join(work, "sub4"))
+    check(r.returncode != 0 and "subdivisions" in r.stderr and not os.path.exists(os.path.join(work, "sub4")),
+          f"--subdivisions 4: {r.returncode} {r.stderr!r}")
+
     # A missing segment is skipped and reported.
     partial = os.path.join(work, "partial-in")
     shutil.copytree(os.path.join(fixture, "supine"), partial)
