@@ -9,7 +9,12 @@
 //  - elsewhere (fluid against the wall), it is fluid + wall with fluid fraction
 //    phi = (HU - wall) / (fluid - wall), and becomes HU - phi (fluid - air): the same mixture with
 //    air in place of the fluid. The half-way value between air and wall then lies where the
-//    half-way value between fluid and wall was, i.e. on the true wall.
+//    half-way value between fluid and wall was, i.e. on the true wall;
+//  - where the level meets the wall the voxel mixes air, fluid and wall: its lumen fraction
+//    follows from its value and the fluid fraction of the lumen at that height (the level is
+//    flat), read from clean air-over-fluid columns nearby; this includes the film of fluid a
+//    shallow pool leaves where its level grazes a nearly horizontal wall, thinner than a voxel
+//    and never bright enough to be found as fluid itself (see the .cxx).
 // A scan without tagged material is returned unchanged.
 #include "Cleansing/CleansingParameters.h"
 #include "Core/Cancel.h"

@@ -3,12 +3,19 @@
 // the cleansing differs) and from the same scan made without fluid. Along the former levels
 // (vertices within 1.5 mm of a pool's level height) the mean curvature is compared with the
 // fluid-free wall at the same places, and the wall with where it truly is.
-// APPROXIMATE (issue 4 open): a ridge remains. Measured (1.5 mm, seed 2, supine/prone): curvature
-// SD 0.161/0.139 mm^-1 against 0.083/0.071 fluid-free, distance to the true wall mean 0.27/0.24 mm,
-// max 1.87/1.44 mm (fluid-free 0.03, 0.22). Three-material handling of the level band brought
-// them down from SD 0.218/0.207 and mean 0.33/0.29 mm; what remains sits where the level grazes
-// the wall (the rim of shallow pools), where the voxel values cannot tell a thin fluid film from
-// wall. The bounds below hold today's figures with a small margin, so a regression fails.
+// Measured (1.5 mm, seed 2, supine/prone): curvature SD 0.092/0.085 mm^-1 against 0.083/0.071
+// fluid-free and 0.082/0.078 on the wall around; distance to the true wall mean 0.079/0.050 mm,
+// max 0.76/0.75 mm (fluid-free 0.03, 0.22). Before the shallow pools' films were cleansed
+// (ElectronicCleansing.cxx: three-material voxels where no fluid core lies below, clean columns
+// searched up to 24 voxels away, the own estimate weighed by its contrast) SD 0.161/0.139 and
+// mean 0.27/0.24 mm, max 1.87/1.44: the film read as wall, and the surface sat up to half a
+// voxel inside the lumen on floors nearly parallel to the level. Seeds 1-6 (set
+// COLONMAP_FLUID_SEED): SD 0.084-0.117 (fluid-free 0.059-0.112, wall around 0.070-0.109), mean
+// distance 0.040-0.098 mm, max <= 1.10 mm (before: SD 0.106-0.257, mean 0.11-0.43, max <= 1.94);
+// in 3 of the 12 scans both surfaces come from the label alone (identical figures), left out.
+// What is left is about one voxel where the lumen's fluid-air mixture is as bright as the wall
+// (fluid fraction near 0.6), so the voxel's value says little and the lumen fraction is
+// interpolated from the voxels above and below. The bounds hold today's figures with a margin.
 #include "Surface/SurfaceReconstruction.h"
 #include "SurfaceDistance.h"
 
@@ -20,6 +27,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 namespace colonmap::surface {
 namespace {
@@ -67,7 +75,7 @@ BandStats Band(const SurfaceResult& s, const ScanGeometry& scan, const PhantomOp
 TEST(FormerFluidLevels, NoRidgeWhereTheLevelWas) {
   for (Posture posture : {Posture::Supine, Posture::Prone}) {
     PhantomOptions o;
-    o.seed = 2;
+    o.seed = std::getenv("COLONMAP_FLUID_SEED") ? std::atoi(std::getenv("COLONMAP_FLUID_SEED")) : 2;
     o.spacing = Eigen::Vector3d::Constant(1.5);
     NullProgress none;
     const ScanGeometry scan = MakeScan(MakeAnatomy(o), posture, o);
@@ -93,9 +101,10 @@ TEST(FormerFluidLevels, NoRidgeWhereTheLevelWas) {
                 posture == Posture::Supine ? "supine" : "prone", level.n, level.sdH, levelDry.sdH, around.sdH,
                 level.meanDistance, level.maxDistance, levelDry.meanDistance, levelDry.maxDistance);
     ASSERT_GT(level.n, 100) << "the phantom should have fluid levels meeting the wall";
-    EXPECT_LT(level.sdH, 2.2 * levelDry.sdH) << "a ridge along the former level";
-    EXPECT_LT(level.meanDistance, 0.32);
-    EXPECT_LT(level.maxDistance, 2.2);
+    EXPECT_LT(level.sdH, 1.35 * levelDry.sdH) << "a ridge along the former level";
+    EXPECT_LT(level.sdH, 1.35 * around.sdH) << "a ridge along the former level";
+    EXPECT_LT(level.meanDistance, 0.12);
+    EXPECT_LT(level.maxDistance, 1.0);
   }
 }
 
