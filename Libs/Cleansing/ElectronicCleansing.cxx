@@ -3,6 +3,8 @@
 #include "Cleansing/TaggedMaterial.h"
 #include "Core/Error.h"
 
+#include <boost/math/special_functions/erf.hpp>
+
 #include <algorithm>
 #include <cmath>
 
@@ -12,7 +14,13 @@ namespace {
 constexpr int kCleanColumnSearch = 8;        // voxels around a level voxel searched for clean columns
 constexpr int kFarColumnSearch = 24;         // ... and how far when none is that near (shallow pools)
 constexpr double kNoiseHU = 60.0;            // tolerated dip in a clean column's air-to-fluid ramp
+constexpr double kSaturated = 0.01;          // lumen fractions this close to 0 or 1 carry no position
 constexpr double kIllConditionedHU = 150.0;  // lumen - wall contrast at which a voxel's own estimate weighs half
+
+// The standard normal quantile and distribution: a Gaussian point-spread function's profile
+// across a plane wall, the model for interpolating a wall's lumen fraction (see below).
+double Probit(double x) { return std::sqrt(2.0) * boost::math::erf_inv(2.0 * x - 1.0); }
+double NormalCdf(double t) { return 0.5 * std::erfc(-t / std::sqrt(2.0)); }
 
 // The index-space axis (0,1,2) and sign closest to a physical direction.
 void DominantAxis(const Volume<short>& ct, const Eigen::Vector3d& down, int& axis, int& sign) {
@@ -189,7 +197,16 @@ CleansingResult Cleanse(const Volume<short>& ct, const CleansingParameters& p, P
       }
     }
     const double total = std::max(1, distance[0] + distance[1]);
-    const double interpolated = fraction[0] + (fraction[1] - fraction[0]) * double(distance[0]) / total;
+    // In the quantile of the fraction, not the fraction itself: through a plane wall a voxel's
+    // lumen fraction is the PSF's cumulative profile of its distance to the wall, and that
+    // distance is linear along gravity, so the quantile interpolates exactly (the PSF's width
+    // cancels); the fraction, a step, does not (measured on the phantom's former levels,
+    // seed 2: curvature SD 0.092 / 0.085 interpolating the fraction, 0.082 / 0.081 its
+    // quantile; fluid-free 0.083 / 0.071). Fractions are clamped to [kSaturated, 1 - kSaturated]
+    // first: a saturated neighbour only says that the wall is at least that far.
+    const double a = Probit(std::clamp(fraction[0], kSaturated, 1.0 - kSaturated));
+    const double b = Probit(std::clamp(fraction[1], kSaturated, 1.0 - kSaturated));
+    const double interpolated = NormalCdf(a + (b - a) * double(distance[0]) / total);
     return own.weight * own.lumen + (1.0 - own.weight) * interpolated;
   };
 

@@ -3,19 +3,18 @@
 // the cleansing differs) and from the same scan made without fluid. Along the former levels
 // (vertices within 1.5 mm of a pool's level height) the mean curvature is compared with the
 // fluid-free wall at the same places, and the wall with where it truly is.
-// Measured (1.5 mm, seed 2, supine/prone): curvature SD 0.092/0.085 mm^-1 against 0.083/0.071
-// fluid-free and 0.082/0.078 on the wall around; distance to the true wall mean 0.079/0.050 mm,
-// max 0.76/0.75 mm (fluid-free 0.03, 0.22). Before the shallow pools' films were cleansed
-// (ElectronicCleansing.cxx: three-material voxels where no fluid core lies below, clean columns
-// searched up to 24 voxels away, the own estimate weighed by its contrast) SD 0.161/0.139 and
-// mean 0.27/0.24 mm, max 1.87/1.44: the film read as wall, and the surface sat up to half a
-// voxel inside the lumen on floors nearly parallel to the level. Seeds 1-6 (set
-// COLONMAP_FLUID_SEED): SD 0.084-0.117 (fluid-free 0.059-0.112, wall around 0.070-0.109), mean
-// distance 0.040-0.098 mm, max <= 1.10 mm (before: SD 0.106-0.257, mean 0.11-0.43, max <= 1.94);
-// in 3 of the 12 scans both surfaces come from the label alone (identical figures), left out.
-// What is left is about one voxel where the lumen's fluid-air mixture is as bright as the wall
-// (fluid fraction near 0.6), so the voxel's value says little and the lumen fraction is
-// interpolated from the voxels above and below. The bounds hold today's figures with a margin.
+// Measured (1.5 mm, seed 2, supine/prone): curvature SD 0.082/0.081 mm^-1 against 0.083/0.071
+// fluid-free and 0.082/0.078 on the wall around; distance to the true wall mean 0.057/0.045 mm,
+// max 0.52/0.71 mm (fluid-free 0.03, 0.22). Seeds 1-6 (set COLONMAP_FLUID_SEED; in 3 of the 12
+// scans both surfaces come from the label alone, identical figures, left out): SD 0.069-0.114,
+// 0.99-1.24 times the fluid-free scan's at the same places; mean distance 0.041-0.088 mm, max
+// <= 1.08 mm. History (ElectronicCleansing.cxx): the three-material level band alone gave seed 2
+// SD 0.161/0.139, mean 0.27/0.24 mm, max 1.87/1.44 (seeds 1-6: SD 0.106-0.257, mean 0.11-0.43,
+// max <= 1.94): the films of shallow pools, where no fluid core lies below, read as wall and the
+// surface sat up to half a voxel inside the lumen on floors nearly parallel to the level.
+// Cleansing those films too: 0.092/0.085, 0.079/0.050 mm; interpolating the quantile of the lumen
+// fraction, not the fraction, across the ill-conditioned voxel layer (lumen mixture as bright as
+// wall): today's figures. The bounds hold them with a margin.
 #include "Surface/SurfaceReconstruction.h"
 #include "SurfaceDistance.h"
 
@@ -101,9 +100,9 @@ TEST(FormerFluidLevels, NoRidgeWhereTheLevelWas) {
                 posture == Posture::Supine ? "supine" : "prone", level.n, level.sdH, levelDry.sdH, around.sdH,
                 level.meanDistance, level.maxDistance, levelDry.meanDistance, levelDry.maxDistance);
     ASSERT_GT(level.n, 100) << "the phantom should have fluid levels meeting the wall";
-    EXPECT_LT(level.sdH, 1.35 * levelDry.sdH) << "a ridge along the former level";
-    EXPECT_LT(level.sdH, 1.35 * around.sdH) << "a ridge along the former level";
-    EXPECT_LT(level.meanDistance, 0.12);
+    EXPECT_LT(level.sdH, 1.25 * levelDry.sdH) << "a ridge along the former level";
+    EXPECT_LT(level.sdH, 1.2 * around.sdH) << "a ridge along the former level";
+    EXPECT_LT(level.meanDistance, 0.1);
     EXPECT_LT(level.maxDistance, 1.0);
   }
 }
