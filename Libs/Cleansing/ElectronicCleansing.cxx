@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 
 namespace colonmap::cleansing {
 namespace {
@@ -14,6 +15,7 @@ namespace {
 constexpr int kCleanColumnSearch = 8;        // voxels around a level voxel searched for clean columns
 constexpr int kFarColumnSearch = 24;         // ... and how far when none is that near (shallow pools)
 constexpr double kNoiseHU = 60.0;            // tolerated dip in a clean column's air-to-fluid ramp
+constexpr double kFilmFraction = 0.02;       // film voxels: level fluid fraction within (this, 1 - this)
 constexpr double kSaturated = 0.01;          // lumen fractions this close to 0 or 1 carry no position
 constexpr double kIllConditionedHU = 150.0;  // lumen - wall contrast at which a voxel's own estimate weighs half
 
@@ -74,17 +76,24 @@ CleansingResult Cleanse(const Volume<short>& ct, const CleansingParameters& p, P
   }
 
   // A voxel of the air-fluid level: air above and tagged core below along gravity, within reach.
-  const auto isLevel = [&](long i, long j, long k) {
-    if (!layer.At(i, j, k)) return false;
-    bool airAbove = false, fluidBelow = tagged.core.At(i, j, k) != 0;
+  // Air within `reach` above the voxel along gravity.
+  const auto airAbove = [&](long i, long j, long k) {
     for (int step = 1; step <= reach; ++step) {
-      long up[3] = {i, j, k}, down[3] = {i, j, k};
+      long up[3] = {i, j, k};
       up[axis] -= sign * step;
+      if (up[axis] >= 0 && up[axis] < n[axis] && ct.At(up[0], up[1], up[2]) < p.airThresholdHU) return true;
+    }
+    return false;
+  };
+  const auto isLevel = [&](long i, long j, long k) {
+    if (layer.At(i, j, k) != 1) return false;
+    bool fluidBelow = tagged.core.At(i, j, k) != 0;
+    for (int step = 1; step <= reach && !fluidBelow; ++step) {
+      long down[3] = {i, j, k};
       down[axis] += sign * step;
-      if (up[axis] >= 0 && up[axis] < n[axis] && ct.At(up[0], up[1], up[2]) < p.airThresholdHU) airAbove = true;
       if (down[axis] >= 0 && down[axis] < n[axis] && tagged.core.At(down[0], down[1], down[2])) fluidBelow = true;
     }
-    return airAbove && fluidBelow;
+    return fluidBelow && airAbove(i, j, k);
   };
   // Lumen fraction of a voxel that mixes wall with air only (above the level) or with fluid only
   // (below it).
@@ -96,7 +105,9 @@ CleansingResult Cleanse(const Volume<short>& ct, const CleansingParameters& p, P
   // where a voxel is air + fluid only. The level is flat, so s depends on the height alone.
   // Returns -1 when no clean column is near.
   const int lateral[2] = {(axis + 1) % 3, (axis + 2) % 3};
-  const auto levelFluidFraction = [&](long i, long j, long k) {
+  // Memoised: the band's voxels ask for it several times (their own estimate, their neighbours').
+  std::unordered_map<std::size_t, float> fractionCache;
+  const auto searchFluidFraction = [&](long i, long j, long k) {
     const long at[3] = {i, j, k};
     double sum = 0.0;
     int found = 0;
@@ -132,18 +143,34 @@ CleansingResult Cleanse(const Volume<short>& ct, const CleansingParameters& p, P
         }
     return found ? sum / found : -1.0;
   };
-
-  const auto nearAir = [&](long i, long j, long k) {
-    for (long c = std::max(0L, k - reach); c <= std::min(n[2] - 1, k + reach); ++c)
-      for (long b = std::max(0L, j - reach); b <= std::min(n[1] - 1, j + reach); ++b)
-        for (long a = std::max(0L, i - reach); a <= std::min(n[0] - 1, i + reach); ++a)
-          if (ct.At(a, b, c) < p.airThresholdHU) return true;
-    return false;
+  const auto levelFluidFraction = [&](long i, long j, long k) {
+    const std::size_t o = ct.Offset(std::size_t(i), std::size_t(j), std::size_t(k));
+    if (const auto it = fractionCache.find(o); it != fractionCache.end()) return double(it->second);
+    const double s = searchFluidFraction(i, j, k);
+    fractionCache.emplace(o, float(s));
+    return s;
   };
+
+  // A film voxel: not core, near air (box of `reach`), tissue or fluid right below it along
+  // gravity (not the fat beside or under a thin wall: measured on the phantom, voxels the fluid
+  // did not touch that cleansing moved by > 100 HU: 234 / 202 without this test, 86 / 61 with
+  // it, same surface; air straight above instead of near air missed films at the prone rims,
+  // curvature SD 0.096 instead of 0.082), and at a height where the level's fluid fraction is
+  // neither ~0 nor ~1.
   const auto isFilm = [&](long i, long j, long k) {
-    if (!nearAir(i, j, k)) return false;
+    if (ct.At(i, j, k) <= p.airThresholdHU || tagged.core.At(i, j, k)) return false;
+    long below[3] = {i, j, k};
+    below[axis] += sign;
+    if (below[axis] < 0 || below[axis] >= n[axis] || ct.At(below[0], below[1], below[2]) < p.wallHU - kNoiseHU)
+      return false;
+    bool air = false;
+    for (long c = std::max(0L, k - reach); c <= std::min(n[2] - 1, k + reach) && !air; ++c)
+      for (long b = std::max(0L, j - reach); b <= std::min(n[1] - 1, j + reach) && !air; ++b)
+        for (long a = std::max(0L, i - reach); a <= std::min(n[0] - 1, i + reach) && !air; ++a)
+          air = ct.At(a, b, c) < p.airThresholdHU;
+    if (!air) return false;
     const double s = levelFluidFraction(i, j, k);
-    return s > 1e-3 && s < 1.0 - 1e-3;
+    return s > kFilmFraction && s < 1.0 - kFilmFraction;
   };
 
   // Lumen fraction L of a voxel of the level band, and how well its value determines it. Where
@@ -174,7 +201,7 @@ CleansingResult Cleanse(const Volume<short>& ct, const CleansingParameters& p, P
   // fluid + wall below: unambiguous). The band of weak estimates is about one voxel thick.
   const auto levelLumenFraction = [&](long i, long j, long k) {
     const Estimate own = threeMaterial(i, j, k);
-    if (own.weight >= 0.99) return own.lumen;
+    if (own.weight >= 0.95) return own.lumen;  // contrast >= 650 HU: the value decides
     const long at[3] = {i, j, k};
     double fraction[2] = {1.0, 1.0};
     int distance[2] = {0, 0};
@@ -185,7 +212,7 @@ CleansingResult Cleanse(const Volume<short>& ct, const CleansingParameters& p, P
         q[axis] += dir * step;
         if (q[axis] < 0 || q[axis] >= n[axis]) break;
         distance[side] = step;
-        if (isLevel(q[0], q[1], q[2]) || (ct.At(q[0], q[1], q[2]) > p.airThresholdHU && isFilm(q[0], q[1], q[2]))) {
+        if (isLevel(q[0], q[1], q[2]) || isFilm(q[0], q[1], q[2])) {
           const Estimate e = threeMaterial(q[0], q[1], q[2]);
           if (e.weight < 0.5) continue;
           fraction[side] = e.lumen;
@@ -217,8 +244,8 @@ CleansingResult Cleanse(const Volume<short>& ct, const CleansingParameters& p, P
   // surface sits up to half a voxel inside the lumen there (measured on the phantom before: up
   // to +900 HU against the fluid-free scan, 0.46 mm mean displacement on floors). Such voxels
   // lie within the clean columns' search radius of a level voxel, at its height: that zone is
-  // marked (2 in `layer`), and its voxels near air whose height has a level fraction strictly
-  // between 0 and 1 are cleansed with the three-material model too.
+  // marked (2 in `layer`), and its film voxels (isFilm) are cleansed with the three-material
+  // model too.
   std::vector<std::size_t> levelVoxels;
   for (long k = 0; k < n[2]; ++k)
     for (long j = 0; j < n[1]; ++j)
@@ -247,7 +274,7 @@ CleansingResult Cleanse(const Volume<short>& ct, const CleansingParameters& p, P
         const double hu = ct.At(i, j, k);
         double cleansed = hu, phi = 0.0;  // phi: fraction of tagged material in the voxel
         const bool level = zone == 1 && isLevel(i, j, k);
-        const bool film = !level && hu > p.airThresholdHU && isFilm(i, j, k);
+        const bool film = !level && isFilm(i, j, k);
         if (level || film) {
           const double lumen = levelLumenFraction(i, j, k);
           cleansed = lumen * p.airHU + (1.0 - lumen) * p.wallHU;

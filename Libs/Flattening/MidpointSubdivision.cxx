@@ -2,9 +2,12 @@
 
 #include "Core/Error.h"
 
+#include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace colonmap::flattening {
@@ -18,6 +21,10 @@ std::uint64_t EdgeKey(int a, int b) {
 
 void SubdivideOnce(TriangleMesh& mesh, Eigen::VectorXi* path) {
   const Eigen::Index n = mesh.V.rows(), m = mesh.F.rows();
+  // Vertex ids are int: n + (at most 3m) midpoints, and 4m faces, must fit.
+  if (static_cast<double>(n) + 3.0 * static_cast<double>(m) > static_cast<double>(std::numeric_limits<int>::max()) ||
+      4.0 * static_cast<double>(m) > static_cast<double>(std::numeric_limits<int>::max()))
+    throw Error("midpoint subdivision: " + std::to_string(m) + " faces are too many to subdivide");
   // One midpoint per edge, numbered in order of first appearance (deterministic).
   std::unordered_map<std::uint64_t, int> midpoint;
   midpoint.reserve(static_cast<std::size_t>(2 * m));

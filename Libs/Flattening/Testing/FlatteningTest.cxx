@@ -157,7 +157,12 @@ TEST(Flattening, MidpointSubdivisionKeepsTheSurfaceAndHalvesMu) {
   const double h = 100.0;
   auto radius = [&](double z) { return 10.0 * (1.0 + 0.4 * std::exp(-std::pow((z - h / 2) / 8.0, 2))); };
   const int n = 24, m = 21;
-  const TriangleMesh t = Tube(radius, h, n, m);
+  TriangleMesh t = Tube(radius, h, n, m);
+  // An integer array takes the value of the edge's end with the smaller index; cell arrays go.
+  Eigen::VectorXd ids(t.V.rows());
+  for (Eigen::Index i = 0; i < ids.size(); ++i) ids(i) = static_cast<double>(i);
+  t.pointData["VertexId"] = DataArray{ids, true};
+  t.cellData["FaceId"] = DataArray{Eigen::VectorXd::Zero(t.F.rows()), true};
   auto area = [](const TriangleMesh& x) {
     double total = 0;
     for (Eigen::Index f = 0; f < x.F.rows(); ++f) {
@@ -199,6 +204,18 @@ TEST(Flattening, MidpointSubdivisionKeepsTheSurfaceAndHalvesMu) {
       EXPECT_TRUE(edgeSet.count({std::min(path(i), path(i + 1)), std::max(path(i), path(i + 1))})) << i;
     const Eigen::VectorXd arc = s.pointData.at("CenterlineArcLength").values.col(0);
     EXPECT_LT((arc - s.V.col(2)).cwiseAbs().maxCoeff(), 1e-12);
+    if (levels == 1) {
+      EXPECT_TRUE(s.cellData.empty());
+      const Eigen::VectorXd id = s.pointData.at("VertexId").values.col(0);
+      EXPECT_TRUE(s.pointData.at("VertexId").integer);
+      for (const surface::MeshEdge& e : surface::MeshEdges(t.F)) {
+        // The midpoint of (a, b): the new vertex at their mean position, joined to both.
+        const Eigen::RowVector3d mid = 0.5 * (t.V.row(e.a) + t.V.row(e.b));
+        Eigen::Index best = 0;
+        (s.V.bottomRows(s.V.rows() - t.V.rows()).rowwise() - mid).rowwise().squaredNorm().minCoeff(&best);
+        EXPECT_EQ(id(t.V.rows() + best), std::min(e.a, e.b));
+      }
+    }
     const DistortionStats q = Stats(Flatten(s, path));
     std::printf("bulged tube, %d subdivision(s): %ld faces, flips %ld, |mu| mean %.5f max %.5f\n", levels, q.faces,
                 q.flipped, q.muMean, q.muMax);
@@ -214,7 +231,21 @@ TEST(Flattening, MidpointSubdivisionKeepsTheSurfaceAndHalvesMu) {
   Eigen::VectorXi bad(2);
   bad << 0, 2 * n + 5;
   EXPECT_THROW(MidpointSubdivision(s, &bad, 1), Error);
-  EXPECT_EQ(s.F.rows(), t.F.rows());  // and the mesh is left as it was
+  // ... and the mesh and the path are left as they were.
+  EXPECT_EQ(s.F, t.F);
+  EXPECT_EQ(s.V.rows(), t.V.rows());
+  EXPECT_EQ(s.pointData.at("CenterlineArcLength").values.rows(), t.V.rows());
+  EXPECT_EQ(bad(1), 2 * n + 5);
+  // Nothing to do: no faces, or a path of one vertex.
+  TriangleMesh empty;
+  empty.V = t.V;
+  empty.F.resize(0, 3);
+  Eigen::VectorXi single(1);
+  single << 3;
+  MidpointSubdivision(empty, &single, 2);
+  EXPECT_EQ(empty.F.rows(), 0);
+  EXPECT_EQ(empty.V.rows(), t.V.rows());
+  EXPECT_EQ(single.size(), 1);
 }
 
 TEST(Flattening, HarmonicFunctionsKeepBoundaryValuesAndMaximumPrinciple) {

@@ -6,10 +6,10 @@
 // fluid-free wall at the same places, and the wall with where it truly is.
 // Measured (1.5 mm, seed 2, supine/prone): curvature SD 0.082/0.081 mm^-1 against 0.083/0.071
 // fluid-free and 0.082/0.078 on the wall around; distance to the true wall mean 0.057/0.045 mm,
-// max 0.52/0.71 mm (fluid-free 0.03, 0.22). Seeds 1-6 (set COLONMAP_FLUID_SEED; the bounds
+// max 0.52/0.71 mm (fluid-free 0.03, 0.22). Seeds 1-6 (DISABLED_SurveySeeds1To6; the bounds
 // below are seed 2's; in 1 of the 12 scans, seed 5 prone, both surfaces come from the label
-// alone, identical figures, left out): SD 0.069-0.114, 0.97-1.24 times the fluid-free scan's at
-// the same places; mean distance 0.041-0.088 mm, max <= 1.11 mm. History (ElectronicCleansing.cxx): the three-material level band alone gave seed 2
+// alone, identical figures, left out): SD 0.072-0.128, 0.99-1.26 times the fluid-free scan's at
+// the same places; mean distance 0.043-0.088 mm, max <= 1.14 mm. History (ElectronicCleansing.cxx): the three-material level band alone gave seed 2
 // SD 0.161/0.139, mean 0.27/0.24 mm, max 1.87/1.44 (seeds 1-6: SD 0.106-0.257, mean 0.11-0.43,
 // max <= 1.94): the films of shallow pools, where no fluid core lies below, read as wall and the
 // surface sat up to half a voxel inside the lumen on floors nearly parallel to the level.
@@ -27,8 +27,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
-#include <cstdlib>
 
 namespace colonmap::surface {
 namespace {
@@ -73,10 +73,12 @@ BandStats Band(const SurfaceResult& s, const ScanGeometry& scan, const PhantomOp
   return b;
 }
 
-TEST(FormerFluidLevels, NoRidgeWhereTheLevelWas) {
+// One seed, both postures; strict: assert the bounds (seed 2's figures with a margin), else only
+// print (the survey over other seeds).
+void FormerLevels(std::uint32_t seed, bool strict) {
   for (Posture posture : {Posture::Supine, Posture::Prone}) {
     PhantomOptions o;
-    o.seed = std::getenv("COLONMAP_FLUID_SEED") ? std::atoi(std::getenv("COLONMAP_FLUID_SEED")) : 2;
+    o.seed = seed;
     o.spacing = Eigen::Vector3d::Constant(1.5);
     NullProgress none;
     const ScanGeometry scan = MakeScan(MakeAnatomy(o), posture, o);
@@ -104,11 +106,24 @@ TEST(FormerFluidLevels, NoRidgeWhereTheLevelWas) {
                 "distance to the true wall mean %.3f max %.3f mm (fluid-free %.3f, %.3f)\n",
                 posture == Posture::Supine ? "supine" : "prone", level.n, level.sdH, levelDry.sdH, around.sdH,
                 level.meanDistance, level.maxDistance, levelDry.meanDistance, levelDry.maxDistance);
+    if (!strict) continue;
     ASSERT_GT(level.n, 100) << "the phantom should have fluid levels meeting the wall";
+    // Both from the CT (a label-only fallback of both would compare a surface with itself).
+    ASSERT_TRUE(fromCleansed.usedCT && fromDry.usedCT);
     EXPECT_LT(level.sdH, 1.25 * levelDry.sdH) << "a ridge along the former level";
     EXPECT_LT(level.sdH, 1.2 * around.sdH) << "a ridge along the former level";
     EXPECT_LT(level.meanDistance, 0.1);
     EXPECT_LT(level.maxDistance, 1.0);
+  }
+}
+
+TEST(FormerFluidLevels, NoRidgeWhereTheLevelWas) { FormerLevels(2, true); }
+
+// The survey of the header (seeds 1-6; prints only): --gtest_also_run_disabled_tests.
+TEST(FormerFluidLevels, DISABLED_SurveySeeds1To6) {
+  for (std::uint32_t seed = 1; seed <= 6; ++seed) {
+    std::printf("seed %u\n", seed);
+    FormerLevels(seed, false);
   }
 }
 

@@ -138,6 +138,10 @@ void Run(cli::ModuleContext& ctx) {
       }
       // Finer faces on the same surface (MidpointSubdivision.h): |mu| halves per level.
       if (subdivisions > 0) {
+        // Curvature of the surface as given, interpolated to the new vertices (computed on the
+        // finer faces it would be zero inside the old faces and a crease on their edges).
+        if (!mesh.pointData.count("MeanCurvature"))
+          mesh.pointData["MeanCurvature"] = DataArray{surface::MeanCurvature(mesh.V, mesh.F), false};
         MidpointSubdivision(mesh, &*path, static_cast<int>(subdivisions));
         if (auto a = mesh.pointData.find("CenterlineArcLength"); a != mesh.pointData.end()) arc = a->second.values.col(0);
       }
