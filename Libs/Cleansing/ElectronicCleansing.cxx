@@ -58,6 +58,9 @@ CleansingResult Cleanse(const Volume<short>& ct, const CleansingParameters& p, P
 
   // The partial-volume layer: every voxel within `reach` (box) of a core. Boxes are stamped
   // around core voxels that have a non-core face neighbour only: the interior adds nothing.
+  // The values of `layer`: partial-volume layer around a core (kLayer), a voxel of it on the
+  // air-fluid level (kLevel, found once by levelTest below), the film zone (kZone, see there).
+  constexpr unsigned char kLayer = 1, kZone = 2, kLevel = 3;
   Volume<unsigned char> layer = tagged.core;
   for (long k = 0; k < n[2]; ++k) {
     progress.Report(0.6 + 0.2 * double(k) / double(n[2]));
@@ -71,7 +74,7 @@ CleansingResult Cleanse(const Volume<short>& ct, const CleansingParameters& p, P
         if (!border) continue;
         for (long c = std::max(0L, k - reach); c <= std::min(n[2] - 1, k + reach); ++c)
           for (long b = std::max(0L, j - reach); b <= std::min(n[1] - 1, j + reach); ++b)
-            for (long a = std::max(0L, i - reach); a <= std::min(n[0] - 1, i + reach); ++a) layer.At(a, b, c) = 1;
+            for (long a = std::max(0L, i - reach); a <= std::min(n[0] - 1, i + reach); ++a) layer.At(a, b, c) = kLayer;
       }
   }
 
@@ -85,8 +88,9 @@ CleansingResult Cleanse(const Volume<short>& ct, const CleansingParameters& p, P
     }
     return false;
   };
-  const auto isLevel = [&](long i, long j, long k) {
-    if (layer.At(i, j, k) != 1) return false;
+  // A layer voxel with air above and tagged core below along gravity, within reach.
+  const auto levelTest = [&](long i, long j, long k) {
+    if (layer.At(i, j, k) != kLayer) return false;
     bool fluidBelow = tagged.core.At(i, j, k) != 0;
     for (int step = 1; step <= reach && !fluidBelow; ++step) {
       long down[3] = {i, j, k};
@@ -95,6 +99,7 @@ CleansingResult Cleanse(const Volume<short>& ct, const CleansingParameters& p, P
     }
     return fluidBelow && airAbove(i, j, k);
   };
+  const auto isLevel = [&](long i, long j, long k) { return layer.At(i, j, k) == kLevel; };
   // Lumen fraction of a voxel that mixes wall with air only (above the level) or with fluid only
   // (below it).
   const auto lumenAbove = [&](double hu) { return std::clamp((p.wallHU - hu) / (p.wallHU - p.airHU), 0.0, 1.0); };
@@ -244,13 +249,14 @@ CleansingResult Cleanse(const Volume<short>& ct, const CleansingParameters& p, P
   // surface sits up to half a voxel inside the lumen there (measured on the phantom before: up
   // to +900 HU against the fluid-free scan, 0.46 mm mean displacement on floors). Such voxels
   // lie within the clean columns' search radius of a level voxel, at its height: that zone is
-  // marked (2 in `layer`), and its film voxels (isFilm) are cleansed with the three-material
+  // marked (kZone in `layer`), and its film voxels (isFilm) are cleansed with the three-material
   // model too.
   std::vector<std::size_t> levelVoxels;
   for (long k = 0; k < n[2]; ++k)
     for (long j = 0; j < n[1]; ++j)
       for (long i = 0; i < n[0]; ++i)
-        if (layer.At(i, j, k) && isLevel(i, j, k)) levelVoxels.push_back(ct.Offset(i, j, k));
+        if (levelTest(i, j, k)) levelVoxels.push_back(ct.Offset(i, j, k));
+  for (std::size_t o : levelVoxels) layer.voxels[o] = kLevel;
   for (std::size_t o : levelVoxels) {
     const long at[3] = {long(o % ct.size[0]), long((o / ct.size[0]) % ct.size[1]), long(o / (ct.size[0] * ct.size[1]))};
     for (int h = -reach; h <= reach; ++h)
@@ -262,7 +268,7 @@ CleansingResult Cleanse(const Volume<short>& ct, const CleansingParameters& p, P
           q[lateral[1]] += b;
           if (q[0] < 0 || q[1] < 0 || q[2] < 0 || q[0] >= n[0] || q[1] >= n[1] || q[2] >= n[2]) continue;
           unsigned char& z = layer.At(q[0], q[1], q[2]);
-          if (!z) z = 2;
+          if (!z) z = kZone;
         }
   }
   for (long k = 0; k < n[2]; ++k) {
@@ -273,7 +279,7 @@ CleansingResult Cleanse(const Volume<short>& ct, const CleansingParameters& p, P
         if (!zone) continue;
         const double hu = ct.At(i, j, k);
         double cleansed = hu, phi = 0.0;  // phi: fraction of tagged material in the voxel
-        const bool level = zone == 1 && isLevel(i, j, k);
+        const bool level = zone == kLevel;
         const bool film = !level && isFilm(i, j, k);
         if (level || film) {
           const double lumen = levelLumenFraction(i, j, k);
@@ -281,7 +287,7 @@ CleansingResult Cleanse(const Volume<short>& ct, const CleansingParameters& p, P
           phi = std::clamp((hu - cleansed) / fluidMinusAir, 0.0, 1.0);
           if (cleansed >= hu) continue;  // nothing tagged to remove
         } else {
-          if (zone != 1) continue;
+          if (zone != kLayer) continue;
           phi = std::clamp((hu - p.wallHU) / fluidMinusWall, 0.0, 1.0);
           if (phi <= 0.0) continue;
           cleansed = hu - phi * fluidMinusAir;
