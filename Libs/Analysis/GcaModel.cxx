@@ -460,6 +460,8 @@ GcaGenusZero GenusZeroGcaColon(const GcaWeld& weld, double spacingMm, long targe
   surface::SurfaceResult sr = surface::ReconstructSurface(label, &pv, so, np);
   if (!sr.topology.IsClosedGenusZero())
     throw Error("GCA colon: the reconstructed surface is not closed genus 0: " + sr.topology.Summary());
+  g.contouredCT = sr.usedCT;
+  g.notes = sr.notes;
   g.colon = std::move(sr.mesh);
   Summarize(DistancesTo(g.colon.V, m), g.toWeldMean, g.toWeldP99, g.toWeldMax);
   // Only the weld's own vertices (not the cap centres).

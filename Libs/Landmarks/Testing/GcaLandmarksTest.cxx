@@ -73,6 +73,8 @@ void CheckGcaLandmarks() {
               surface::AnalyzeTopology(g0.colon.F).Summary().c_str(), g0.lumenMl, g0.handleVoxelsRemoved,
               g0.cavityVoxelsFilled, g0.toWeldMean, g0.toWeldP99, g0.toWeldMax, g0.fromWeldMean, g0.fromWeldP99,
               g0.fromWeldMax, g0.seconds);
+  std::printf("contoured from %s\n", g0.contouredCT ? "the CT-like field" : "the label alone");
+  for (const std::string& note : g0.notes) std::printf("  %s\n", note.c_str());
   ASSERT_TRUE(surface::AnalyzeTopology(g0.colon.F).IsClosedGenusZero());
   EXPECT_LT(g0.toWeldMean, 0.5);  // the genus-0 surface stays on the atlas surface (1.5 mm grid)
 
