@@ -5,8 +5,13 @@ flattening), for each registration method (conformal map only, centerline arc le
 harmonic), evaluated against the phantom's exact truth.
 
     registration_seeds.py --cli-dir DIR --cache CACHE [--seeds 1-10] [--spacing 0.7,0.7,1.0]
-                          [--methods conformal,centerline,harmonic[,harmonic-affine]] [--output seeds.json]
-                          [--prepare-only] [--keep-volumes]
+                          [--methods none,conformal,centerline,harmonic[,harmonic-affine]] [--output seeds.json]
+                          [--real-colon ATLAS_DIR] [--deformation 0.5] [--prepare-only] [--keep-volumes]
+
+--real-colon makes each pair with ColonPhantom --realColon ATLAS_DIR (issue 17: a real colon under the
+seeded deformation) instead of the tube. Method "none" is no registration: the supine position of each
+evaluation point taken as its prone position (the baseline a registration must beat). A pair whose
+pipeline stops (a stage exits non-zero) is reported with the stage and its error line, not hidden.
 
 CACHE/seed<N>/ holds, per seed, what the registration needs and is made once when missing:
 phantom/ (truth files only: *_eval.mrk.json, *_polyps.mrk.json, truth.json, *_truth.vtp;
@@ -62,13 +67,18 @@ def parse_seeds(text):
     return seeds
 
 
-def prepare(cli, folder, seed, spacing, keep_volumes):
+def prepare(cli, folder, seed, spacing, keep_volumes, real_colon=None, deformation=None):
     """Makes CACHE/seed<N> (phantom truth, surfaces, landmarks, flattenings) when missing."""
     if all(os.path.exists(os.path.join(folder, "flattening", s, "flattening.json")) for s in ("supine", "prone")):
         return
     print(f"seed {seed}: making the pair in {folder}", flush=True)
     phantom = os.path.join(folder, "phantom")
-    run(cli, "ColonPhantom", ["--outputDirectory", phantom, "--seed", str(seed), "--spacing", spacing], sys.stdout)
+    args = ["--outputDirectory", phantom, "--seed", str(seed), "--spacing", spacing]
+    if real_colon:
+        args += ["--realColon", real_colon]
+    if deformation is not None:
+        args += ["--deformation", str(deformation)]
+    run(cli, "ColonPhantom", args, sys.stdout)
     work = os.path.join(folder, "work")
     for sub in ("work", "surface", "landmarks", "flattening"):
         os.makedirs(os.path.join(folder, sub), exist_ok=True)
@@ -122,7 +132,37 @@ def stats(values):
             "p90": round(p90, 3), "max": round(v[-1], 3)}
 
 
+def markup_points(path):
+    doc = json.load(open(path))
+    return {p["label"]: (p["position"], p.get("description", "")) for p in doc["markups"][0]["controlPoints"]}
+
+
+def no_registration(folder):
+    """The baseline: each evaluation point's supine position taken as its prone position."""
+    phantom = os.path.join(folder, "phantom")
+    sup = markup_points(os.path.join(phantom, "supine_eval.mrk.json"))
+    pro = markup_points(os.path.join(phantom, "prone_eval.mrk.json"))
+    points, segs = [], {}
+    for label, (p, desc) in sup.items():
+        q = pro[label][0]
+        seg = re.search(r"segment=(\w)", desc).group(1)
+        e = math.dist(p, q)
+        points.append({"label": label, "group": seg, "error3D": e, "uncertainty": 0.0})
+        segs.setdefault(seg, []).append(e)
+    psup = markup_points(os.path.join(phantom, "supine_polyps.mrk.json"))
+    ppro = markup_points(os.path.join(phantom, "prone_polyps.mrk.json"))
+    polyp = [math.dist(p, ppro[k][0]) for k, (p, _) in psup.items()]
+    ev = {"overall": {"error3D": stats([pt["error3D"] for pt in points]), "roundTrip": {"mean": 0.0}},
+          "segments": {k: {"error3D": stats(v)} for k, v in segs.items()}}
+    if polyp:
+        ev["polyps"] = {"error3D": stats(polyp)}
+    return {"registrationSeconds": 0.0, "returns": {}, "evaluation": ev, "roundTripMeanMm": 0.0,
+            "uncertaintyPearson": None, "uncertaintySpearman": None, "points": points}
+
+
 def evaluate(cli, folder, method, out):
+    if method == "none":
+        return no_registration(folder)
     flat = os.path.join(folder, "flattening")
     phantom = os.path.join(folder, "phantom")
     reg = os.path.join(out, method)
@@ -175,20 +215,33 @@ def main():
     p.add_argument("--prepare-only", action="store_true")
     p.add_argument("--dump-points", default=None)
     p.add_argument("--keep-volumes", action="store_true")
+    p.add_argument("--real-colon", default=None, help="a real colon folder for ColonPhantom --realColon")
+    p.add_argument("--deformation", type=float, default=None)
     a = p.parse_args()
     seeds = parse_seeds(a.seeds)
     methods = a.methods.split(",")
-    report = {"spacing": a.spacing, "seeds": {}, "methods": methods}
+    report = {"spacing": a.spacing, "seeds": {}, "methods": methods, "failed": {},
+              "realColon": a.real_colon, "deformation": a.deformation}
     for seed in seeds:
         folder = os.path.join(os.path.abspath(a.cache), f"seed{seed}")
         os.makedirs(folder, exist_ok=True)
-        prepare(a.cli_dir, folder, seed, a.spacing, a.keep_volumes)
+        try:
+            prepare(a.cli_dir, folder, seed, a.spacing, a.keep_volumes, a.real_colon, a.deformation)
+        except RuntimeError as e:
+            print(f"seed {seed}: FAILED: {e}", flush=True)
+            report["failed"][seed] = str(e)
+            continue
         if a.prepare_only:
             continue
         out = os.path.join(a.work, f"seed{seed}") if a.work else os.path.join(folder, "runs")
         report["seeds"][seed] = {}
         for method in methods:
-            r = evaluate(a.cli_dir, folder, method, out)
+            try:
+                r = evaluate(a.cli_dir, folder, method, out)
+            except RuntimeError as e:
+                print(f"seed {seed} {method}: FAILED: {e}", flush=True)
+                report["failed"][f"{seed}/{method}"] = str(e)
+                continue
             report["seeds"][seed][method] = r
             ev = r["evaluation"]
             o = ev["overall"]["error3D"]
@@ -204,7 +257,9 @@ def main():
         pooled, polyps, segs, trips, flips, secs, fsecs, corr, scorr, per_seed = [], [], {s: [] for s in SEGMENTS}, \
             [], [], [], [], [], [], []
         for seed in seeds:
-            r = report["seeds"][seed][method]
+            r = report["seeds"].get(seed, {}).get(method)
+            if r is None:
+                continue
             ev = r["evaluation"]
             pooled += [pt["error3D"] for pt in r["points"]]
             for pt in r["points"]:
@@ -223,13 +278,13 @@ def main():
         agg[method] = {"pooled": stats(pooled),
                        "perSegmentPooled": {s: stats(v) for s, v in segs.items() if v},
                        "perSeed": per_seed,
-                       "meanOfSeedMeans": round(statistics.fmean(x["mean"] for x in per_seed), 3),
-                       "worstSeed": {k: max(x[k] for x in per_seed) for k in ("mean", "median", "p90", "max")},
+                       "meanOfSeedMeans": round(statistics.fmean(x["mean"] for x in per_seed), 3) if per_seed else None,
+                       "worstSeed": {k: max(x[k] for x in per_seed) for k in ("mean", "median", "p90", "max")} if per_seed else None,
                        "polypMeanOfSeeds": round(statistics.fmean(polyps), 3) if polyps else None,
                        "polypMeanPerSeed": polyps,
-                       "flips": flips, "maxRoundTripMeanMm": max(trips),
-                       "registrationSeconds": {"mean": round(statistics.fmean(secs), 2), "max": max(secs)},
-                       "featuresMatchingHarmonicSeconds": {"mean": round(statistics.fmean(fsecs), 3), "max": max(fsecs)},
+                       "flips": flips, "maxRoundTripMeanMm": max(trips) if trips else None,
+                       "registrationSeconds": {"mean": round(statistics.fmean(secs), 2), "max": max(secs)} if secs else None,
+                       "featuresMatchingHarmonicSeconds": {"mean": round(statistics.fmean(fsecs), 3), "max": max(fsecs)} if fsecs else None,
                        "uncertaintyPearsonMean": round(statistics.fmean(corr), 3) if corr else None,
                        "uncertaintySpearmanMean": round(statistics.fmean(scorr), 3) if scorr else None}
     report["aggregate"] = agg
@@ -243,8 +298,12 @@ def main():
     if a.output:
         with open(a.output, "w") as f:
             f.write(text)
+    for seed, why in report["failed"].items():
+        print(f"seed {seed} failed: {why}")
     for method in methods:
         g = agg[method]
+        if not g["perSeed"]:
+            continue
         print(f"{method:10s} pooled {g['pooled']} polyps(mean of seeds) {g['polypMeanOfSeeds']} worst seed {g['worstSeed']}")
         print("           per segment " + ", ".join(f"{s}:{v['mean']}/{v['median']}/{v['p90']}/{v['max']}"
                                              for s, v in g["perSegmentPooled"].items()))

@@ -4,25 +4,26 @@
 #include "Core/Error.h"
 #include "IO/MeshIO.h"
 #include "Segmentation/LumenSegmentation.h"
-#include "Segmentation/SimplePoint.h"
+#include "Segmentation/WellComposed.h"
 #include "Surface/MeshTopology.h"
+#include "Surface/SurfaceDistance.h"
 #include "Surface/SurfaceReconstruction.h"
 #include "Surface/VtkConversion.h"
 
+#include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
-#include <vtkGenericCell.h>
 #include <vtkImageData.h>
 #include <vtkImageGaussianSmooth.h>
 #include <vtkImageStencilToImage.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataToImageStencil.h>
-#include <vtkStaticCellLocator.h>
 #include <vtkStaticCleanPolyData.h>
 
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <filesystem>
 #include <cmath>
 #include <fstream>
 #include <queue>
@@ -104,23 +105,9 @@ void OrientConsistently(Eigen::MatrixXi& F) {
   }
 }
 
-// Distances from the points P to the surface `to` (exact closest point on its triangles).
 std::vector<double> DistancesTo(const Eigen::MatrixXd& P, const TriangleMesh& to) {
-  vtkNew<vtkPolyData> pd;
-  surface::ToPolyData(to, pd);
-  vtkNew<vtkStaticCellLocator> loc;
-  loc->SetDataSet(pd);
-  loc->BuildLocator();
-  vtkNew<vtkGenericCell> cell;
-  std::vector<double> d(static_cast<std::size_t>(P.rows()));
-  for (Eigen::Index i = 0; i < P.rows(); ++i) {
-    double x[3] = {P(i, 0), P(i, 1), P(i, 2)}, c[3], d2 = 0;
-    vtkIdType id;
-    int sub;
-    loc->FindClosestPoint(x, c, cell, id, sub, d2);
-    d[static_cast<std::size_t>(i)] = std::sqrt(d2);
-  }
-  return d;
+  const Eigen::VectorXd d = surface::ClosestOnSurface(to.V, to.F, P).distance;
+  return std::vector<double>(d.data(), d.data() + d.size());
 }
 
 void Summarize(std::vector<double> d, double& mean, double& p99, double& max) {
@@ -134,75 +121,6 @@ void Summarize(std::vector<double> d, double& mean, double& p99, double& max) {
 }
 
 
-// Makes a 26-connected voxel set well-composed (Latecki): no 2x2 face with only a diagonal pair
-// set (or unset) and no 2x2x2 cube with only a body-diagonal pair set (or unset). Marching cubes
-// resolves exactly those configurations by a fixed table, which on the (26,6) topology of the
-// grown ball opens handles (measured on the GCA colon: genus 29 from a genus-0 ball contoured
-// nearly unsmoothed). Each critical cube is resolved by adding one of its unset voxels, or else
-// removing one of its set voxels, that is a simple point (so the set's topology never changes),
-// first candidate in a fixed order; repeated until no critical cube is left. Returns the
-// number of voxels changed. mask: 0/1, border voxels 0.
-long MakeWellComposed(Volume<unsigned char>& mask) {
-  const long nx = static_cast<long>(mask.size[0]), ny = static_cast<long>(mask.size[1]), nz = static_cast<long>(mask.size[2]);
-  const auto at = [&](long i, long j, long k) -> unsigned char& {
-    return mask.voxels[static_cast<std::size_t>(i + nx * (j + ny * k))];
-  };
-  const auto simple = [&](long i, long j, long k) {
-    std::uint32_t nb = 0;
-    for (int dk = -1; dk <= 1; ++dk)
-      for (int dj = -1; dj <= 1; ++dj)
-        for (int di = -1; di <= 1; ++di)
-          if ((di || dj || dk) && at(i + di, j + dj, k + dk)) nb |= 1u << segmentation::NeighbourBit(di, dj, dk);
-    return segmentation::IsSimple26(nb);
-  };
-  // Corner c (bit 0: +i, bit 1: +j, bit 2: +k) of the cube at (i, j, k).
-  const auto critical = [](unsigned bits) {
-    // Face diagonals: the six faces of the cube, corners in cyclic order.
-    static constexpr int faces[6][4] = {{0, 1, 3, 2}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 3, 7, 5}};
-    for (const auto& f : faces) {
-      const bool a = bits >> f[0] & 1, b = bits >> f[1] & 1, c = bits >> f[2] & 1, d = bits >> f[3] & 1;
-      if (a == c && b == d && a != b) return true;
-    }
-    // Body diagonals: exactly two opposite corners set, or exactly two unset.
-    for (unsigned c = 0; c < 4; ++c) {
-      const unsigned pair = (1u << c) | (1u << (7 - c));
-      if (bits == pair || bits == (0xFFu & ~pair)) return true;
-    }
-    return false;
-  };
-  long changed = 0;
-  for (int pass = 0; pass < 50; ++pass) {
-    long fixedNow = 0, stuck = 0;
-    for (long k = 1; k + 2 < nz; ++k)
-      for (long j = 1; j + 2 < ny; ++j)
-        for (long i = 1; i + 2 < nx; ++i) {
-          unsigned bits = 0;
-          for (unsigned c = 0; c < 8; ++c)
-            if (at(i + (c & 1), j + (c >> 1 & 1), k + (c >> 2 & 1))) bits |= 1u << c;
-          if (bits == 0 || bits == 0xFF || !critical(bits)) continue;
-          bool done = false;
-          for (int want = 1; want >= 0 && !done; --want)  // add first, else remove
-            for (unsigned c = 0; c < 8 && !done; ++c) {
-              const long x = i + (c & 1), y = j + (c >> 1 & 1), z = k + (c >> 2 & 1);
-              if ((bits >> c & 1) == static_cast<unsigned>(want)) continue;
-              if (x < 1 || y < 1 || z < 1 || x > nx - 2 || y > ny - 2 || z > nz - 2) continue;
-              if (simple(x, y, z)) {
-                at(x, y, z) = static_cast<unsigned char>(want);
-                done = true;
-              }
-            }
-          if (done) ++fixedNow;
-          else ++stuck;
-        }
-    changed += fixedNow;
-    if (fixedNow == 0) {
-      if (stuck) throw Error("GCA colon: " + std::to_string(stuck) + " voxel configurations cannot be made well-composed");
-      break;
-    }
-  }
-  return changed;
-}
-
 }  // namespace
 
 double GcaModel::Arc(const std::string& name) const {
@@ -211,38 +129,120 @@ double GcaModel::Arc(const std::string& name) const {
   return midlineArc(it->second);
 }
 
+namespace {
+
+// The model JSON of a GCA folder: the one *.json file at its top (the midline and maps are .jsn).
+std::string FindModelFile(const std::string& directory) {
+  std::error_code ec;
+  std::vector<std::string> found;
+  for (const auto& e : std::filesystem::directory_iterator(directory, ec))
+    if (e.is_regular_file(ec) && e.path().extension() == ".json") found.push_back(e.path().string());
+  if (ec) throw InputError("GCA model folder", directory, "cannot be read");
+  if (found.size() != 1)
+    throw InputError("GCA model folder", directory,
+                     found.empty() ? "holds no model JSON (*.json)" : "holds more than one model JSON (*.json)");
+  return found.front();
+}
+
+// Midline indices of a piece's vertices (its *_map.jsn: one index per vertex).
+std::pair<int, int> MapRange(const std::string& file) {
+  const nlohmann::json map = ReadJson(file, "GCA surface map");
+  if (!map.is_array() || map.empty()) throw InputError("GCA surface map", file, "is not a non-empty list of indices");
+  int lo = map.front().get<int>(), hi = lo;
+  for (const auto& v : map) lo = std::min(lo, v.get<int>()), hi = std::max(hi, v.get<int>());
+  return {lo, hi};
+}
+
+}  // namespace
+
+bool IsGcaModelFolder(const std::string& directory) {
+  try {
+    const nlohmann::json model = ReadJson(FindModelFile(directory), "GCA model");
+    for (const auto& p : model.at("paths"))
+      if (p.at("anatomy").at("abbreviated_name") == "large intestine") return true;
+  } catch (const std::exception&) {
+  }
+  return false;
+}
+
 GcaModel ReadGcaModel(const std::string& directory) {
   GcaModel g;
   g.directory = directory;
-  const std::string modelFile = directory + "/EdinGCA_3D_00020_1_14.json";
+  const std::string modelFile = FindModelFile(directory);
+  g.modelFile = modelFile;
   const nlohmann::json model = ReadJson(modelFile, "GCA model");
-  bool haveVoxel = false;
-  for (const auto& o : model.at("model_objects")) {
-    if (o.contains("voxel_size")) {
-      for (int k = 0; k < 3; ++k) g.voxelSize(k) = o["voxel_size"][static_cast<std::size_t>(k)].get<double>();
-      haveVoxel = true;
+  try {
+    g.name = model.value("name", std::string());
+    g.serial = model.value("serial", std::string());
+    bool haveVoxel = false;
+    for (const auto& o : model.at("model_objects")) {
+      if (o.contains("voxel_size")) {
+        for (int k = 0; k < 3; ++k) g.voxelSize(k) = o["voxel_size"][static_cast<std::size_t>(k)].get<double>();
+        haveVoxel = true;
+      }
+      if (o.contains("filename") && o.contains("map_filename"))
+        g.surfaceMap[o["filename"].get<std::string>()] = o["map_filename"].get<std::string>();
     }
-    if (o.contains("filename") && o.contains("map_filename"))
-      g.surfaceMap[o["filename"].get<std::string>()] = o["map_filename"].get<std::string>();
-  }
-  if (!haveVoxel) throw InputError("GCA model", modelFile, "has no voxel_size");
-  // Landmarks on the large-intestine path (GUT_ATLAS_PAT:10); the small-intestine path has its own.
-  for (const auto& l : model.at("landmarks"))
-    if (l.at("paths").at(0) == "GUT_ATLAS_PAT:10")
-      g.landmark[l.at("anatomy").at(0).at("abbreviated_name").get<std::string>()] = l.at("position").at(0).get<int>();
+    if (!haveVoxel) throw InputError("GCA model", modelFile, "has no voxel_size");
+    // The large-intestine path (GCA 00020: GUT_ATLAS_PAT:10) and its landmarks; the
+    // small-intestine path has its own.
+    std::string pathId, pathFile;
+    for (const auto& p : model.at("paths"))
+      if (p.at("anatomy").at("abbreviated_name") == "large intestine") {
+        pathId = p.at("id").get<std::string>();
+        pathFile = directory + "/" + p.value("filepath", std::string("Paths/")) + p.at("spline_filename").get<std::string>();
+      }
+    if (pathId.empty()) throw InputError("GCA model", modelFile, "has no large-intestine path");
+    for (const auto& l : model.at("landmarks"))
+      if (l.at("paths").at(0) == pathId)
+        g.landmark[l.at("anatomy").at(0).at("abbreviated_name").get<std::string>()] = l.at("position").at(0).get<int>();
 
-  const std::string pathFile = directory + "/Paths/large_intestine_path.jsn";
-  const nlohmann::json path = ReadJson(pathFile, "GCA midline");
-  const auto& pts = path.at("points");
-  g.midline.resize(static_cast<Eigen::Index>(pts.size()), 3);
-  for (std::size_t i = 0; i < pts.size(); ++i)
-    for (int k = 0; k < 3; ++k)
-      g.midline(static_cast<Eigen::Index>(i), k) = pts[i].at(static_cast<std::size_t>(k)).get<double>() * g.voxelSize(k);
-  if (g.midline.rows() < 2) throw InputError("GCA midline", pathFile, "has fewer than two points");
+    const nlohmann::json path = ReadJson(pathFile, "GCA midline");
+    const auto& pts = path.at("points");
+    g.midline.resize(static_cast<Eigen::Index>(pts.size()), 3);
+    for (std::size_t i = 0; i < pts.size(); ++i)
+      for (int k = 0; k < 3; ++k) {
+        const double v = pts[i].at(static_cast<std::size_t>(k)).get<double>() * g.voxelSize(k);
+        if (!std::isfinite(v)) throw InputError("GCA midline", pathFile, "has a point that is not a finite number");
+        g.midline(static_cast<Eigen::Index>(i), k) = v;
+      }
+    if (g.midline.rows() < 2) throw InputError("GCA midline", pathFile, "has fewer than two points");
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError("GCA model", modelFile, std::string("is not a GCA model: ") + e.what());
+  }
   g.midlineArc = ArcLength(g.midline);
   for (const auto& [name, idx] : g.landmark)
     if (idx < 0 || idx >= g.midline.rows())
       throw InputError("GCA model", modelFile, "landmark " + name + " lies outside the midline path");
+
+  // Colon pieces: large-intestine surfaces with a midline map, ordered along the midline; the
+  // appendix (beyond the appendix orifice) and pieces inside the others' midline range (the
+  // HuBMAP models' separate flexure regions overlap their neighbours) are left out.
+  const int ao = g.landmark.count("AO") ? g.landmark.at("AO") : static_cast<int>(g.midline.rows()) - 1;
+  struct Piece {
+    std::string name;
+    int lo, hi;
+  };
+  std::vector<Piece> pieces;
+  const std::string prefix = "large-intestine-";
+  for (const auto& [file, mapFile] : g.surfaceMap) {
+    if (file.rfind(prefix, 0) != 0 || file.size() < prefix.size() + 4 || file.substr(file.size() - 4) != ".vtk") continue;
+    const std::string mapPath = directory + "/SegmentedSurfaces/" + mapFile;
+    if (!std::filesystem::exists(mapPath)) continue;
+    const auto [lo, hi] = MapRange(mapPath);
+    if (lo >= ao - 2) continue;  // the appendix
+    pieces.push_back({file.substr(prefix.size(), file.size() - prefix.size() - 4), lo, hi});
+  }
+  std::sort(pieces.begin(), pieces.end(), [](const Piece& a, const Piece& b) {
+    return a.lo != b.lo ? a.lo < b.lo : a.hi > b.hi;
+  });
+  int reach = -1;
+  for (const Piece& p : pieces) {
+    if (p.hi <= reach) continue;  // inside what the pieces before it cover
+    g.colonPieces.push_back(p.name);
+    reach = p.hi;
+  }
+  if (g.colonPieces.empty()) throw InputError("GCA model", modelFile, "has no large-intestine surface with a midline map");
   return g;
 }
 
@@ -253,18 +253,12 @@ TriangleMesh ReadGcaSurface(const GcaModel& model, const std::string& piece) {
   return m;
 }
 
-const std::vector<std::string>& GcaColonPieces() {
-  static const std::vector<std::string> pieces{"A-DSJ",  "DSJ-SF-", "SF--SF",   "SF-SF+", "SF+-HF-",
-                                               "HF--HF", "HF-HF+",  "HF+-ICVc", "ICVc-AO"};
-  return pieces;
-}
-
 GcaWeld WeldGcaColon(const GcaModel& model, double toleranceMm) {
   GcaWeld w;
   // 1. Append the pieces (each is one piece of the same upstream surface, cut at landmarks).
   std::vector<TriangleMesh> pieces;
   Eigen::Index nv = 0, nf = 0;
-  for (const std::string& p : GcaColonPieces()) {
+  for (const std::string& p : model.colonPieces) {
     pieces.push_back(ReadGcaSurface(model, p));
     nv += pieces.back().V.rows();
     nf += pieces.back().F.rows();
@@ -325,8 +319,10 @@ GcaWeld WeldGcaColon(const GcaModel& model, double toleranceMm) {
 
   // 4. Non-manifold edges (used by three or more faces) have no consistent repair by choosing
   // faces: all faces on them go (the hole they leave is capped in step 6), then vertices where
-  // two fans touch are split and the largest component kept. Repeated until manifold, since a
-  // removal can leave new pinched vertices.
+  // two fans touch are split and small components dropped. Components of at least a quarter of
+  // the largest stay: the HuBMAP models are thick-walled, each piece an inner (mucosal) and an
+  // outer (serosal) shell, and the lumen is the inner one (chosen in step 7). Repeated until
+  // manifold, since a removal can leave new pinched vertices.
   for (int pass = 0; pass < 10; ++pass) {
     const auto bad = surface::NonManifoldEdges(m.F);
     std::set<std::pair<int, int>> badSet;
@@ -344,14 +340,16 @@ GcaWeld WeldGcaColon(const GcaModel& model, double toleranceMm) {
     int count = 0;
     const std::vector<int> comp = surface::FaceComponents(m.F, &count);
     if (count > 1) {
-      std::vector<bool> largest(static_cast<std::size_t>(m.F.rows()));
-      for (Eigen::Index f = 0; f < m.F.rows(); ++f) largest[static_cast<std::size_t>(f)] = comp[static_cast<std::size_t>(f)] == 0;
-      w.droppedFaces += static_cast<long>(std::count(largest.begin(), largest.end(), false));
-      Keep(m, largest);
+      const std::vector<int> sizes = surface::ComponentSizes(comp, count);
+      std::vector<bool> large(static_cast<std::size_t>(m.F.rows()));
+      for (Eigen::Index f = 0; f < m.F.rows(); ++f)
+        large[static_cast<std::size_t>(f)] = 4 * sizes[static_cast<std::size_t>(comp[static_cast<std::size_t>(f)])] >= sizes[0];
+      w.droppedFaces += static_cast<long>(std::count(large.begin(), large.end(), false));
+      Keep(m, large);
     }
     if (surface::NonManifoldEdges(m.F).empty() && surface::NonManifoldVertices(m.F).empty()) break;
   }
-  w.steps.push_back(Step("non-manifold removed, largest component", m.F));
+  w.steps.push_back(Step("non-manifold removed, small components dropped", m.F));
 
   // 5. One consistent orientation (the pieces need not agree with each other).
   OrientConsistently(m.F);
@@ -384,16 +382,39 @@ GcaWeld WeldGcaColon(const GcaModel& model, double toleranceMm) {
   w.colon.V = V;
   w.colon.F = F;
   w.steps.push_back(Step("holes capped", F));
-  const surface::TopologyReport t = surface::AnalyzeTopology(F);
+
+  // 7. Of nested closed shells (thick-walled models), the lumen is the one enclosing the least
+  // volume.
+  int shells = 0;
+  const std::vector<int> comp = surface::FaceComponents(w.colon.F, &shells);
+  if (shells > 1) {
+    std::vector<double> volume(static_cast<std::size_t>(shells), 0.0);
+    for (Eigen::Index f = 0; f < w.colon.F.rows(); ++f) {
+      const Eigen::Vector3d a = w.colon.V.row(w.colon.F(f, 0)), b = w.colon.V.row(w.colon.F(f, 1)), c = w.colon.V.row(w.colon.F(f, 2));
+      volume[static_cast<std::size_t>(comp[static_cast<std::size_t>(f)])] += a.dot(b.cross(c)) / 6.0;
+    }
+    int inner = 0;
+    for (int k = 1; k < shells; ++k)
+      if (std::fabs(volume[static_cast<std::size_t>(k)]) < std::fabs(volume[static_cast<std::size_t>(inner)])) inner = k;
+    std::vector<bool> keep(static_cast<std::size_t>(w.colon.F.rows()));
+    for (Eigen::Index f = 0; f < w.colon.F.rows(); ++f) keep[static_cast<std::size_t>(f)] = comp[static_cast<std::size_t>(f)] == inner;
+    w.outerShellFaces = static_cast<long>(std::count(keep.begin(), keep.end(), false));
+    std::vector<int> old;
+    TriangleMesh kept;
+    surface::KeepFaces(w.colon.V, w.colon.F, keep, kept.V, kept.F, &old);
+    w.capVertices = static_cast<int>(std::count_if(old.begin(), old.end(), [&](int v) { return v >= m.V.rows(); }));
+    w.colon = std::move(kept);
+    w.steps.push_back(Step("innermost shell kept", w.colon.F));
+  }
+  const Eigen::MatrixXi& F2 = w.colon.F;
+  const surface::TopologyReport t = surface::AnalyzeTopology(F2);
   if (t.components != 1 || t.boundaryLoops != 0 || t.nonManifoldEdges || t.nonManifoldVertices || t.inconsistentEdges)
     throw Error("GCA colon: welding did not give one closed, manifold, oriented surface: " + t.Summary());
   return w;
 }
 
-GcaGenusZero GenusZeroGcaColon(const GcaWeld& weld, double spacingMm, long targetFaces) {
-  const auto t0 = std::chrono::steady_clock::now();
-  GcaGenusZero g;
-  const TriangleMesh& m = weld.colon;
+LumenBall GenusZeroBall(const TriangleMesh& m, double spacingMm, ProgressSink* progress) {
+  LumenBall out;
   // Grid: the bounding box plus a margin of 4 voxels (the lumen must not touch the image sides,
   // or the segmentation takes it for air outside the body).
   const Eigen::RowVector3d lo = m.V.colwise().minCoeff().array() - 4 * spacingMm;
@@ -423,13 +444,27 @@ GcaGenusZero GenusZeroGcaColon(const GcaWeld& weld, double spacingMm, long targe
   const short* src = static_cast<const short*>(img->GetScalarPointer());
   ct.voxels.assign(src, src + ct.NumberOfVoxels());
 
+  NullProgress none;
+  segmentation::LumenSegmentation seg = segmentation::SegmentColonLumen(ct, {}, progress ? *progress : none);
+  out.lumenMl = seg.lumenVolumeMl;
+  out.handleVoxelsRemoved = seg.handleVoxelsRemoved;
+  out.cavityVoxelsFilled = seg.cavityVoxelsFilled;
+  out.ball = std::move(seg.label);
+  out.wellComposedVoxels = segmentation::MakeWellComposed(out.ball);
+  return out;
+}
+
+GcaGenusZero GenusZeroGcaColon(const GcaWeld& weld, double spacingMm, long targetFaces) {
+  const auto t0 = std::chrono::steady_clock::now();
+  GcaGenusZero g;
+  const TriangleMesh& m = weld.colon;
+  LumenBall lumen = GenusZeroBall(m, spacingMm);
+  g.lumenMl = lumen.lumenMl;
+  g.handleVoxelsRemoved = lumen.handleVoxelsRemoved;
+  g.cavityVoxelsFilled = lumen.cavityVoxelsFilled;
+  g.wellComposedVoxels = lumen.wellComposedVoxels;
+  const Volume<unsigned char>& ball = lumen.ball;
   NullProgress np;
-  const segmentation::LumenSegmentation seg = segmentation::SegmentColonLumen(ct, {}, np);
-  g.lumenMl = seg.lumenVolumeMl;
-  g.handleVoxelsRemoved = seg.handleVoxelsRemoved;
-  g.cavityVoxelsFilled = seg.cavityVoxelsFilled;
-  Volume<unsigned char> ball = seg.label;
-  g.wellComposedVoxels = MakeWellComposed(ball);
   // A smooth field whose sign pattern at the voxel centres is the ball's: the Gaussian-smoothed
   // ball (sigma 0.7 voxel, as ColonSurface's label path), clamped to [0.55, 1] on the ball and
   // [0, 0.45] off it, written as a CT (0 -> 40 HU, 1 -> -1000 HU). Unclamped, the smoothing

@@ -10,6 +10,12 @@
 namespace colonmap::flattening {
 
 std::vector<int> SplitEdgesAtMidpoints(TriangleMesh& mesh, const std::vector<std::pair<int, int>>& edges) {
+  return SplitEdgesAt(mesh, edges, std::vector<double>(edges.size(), 0.5));
+}
+
+std::vector<int> SplitEdgesAt(TriangleMesh& mesh, const std::vector<std::pair<int, int>>& edges,
+                              const std::vector<double>& t) {
+  if (t.size() != edges.size()) throw Error("split edges: one parameter per edge expected");
   std::vector<int> added;
   if (edges.empty()) return added;
   auto key = [](int a, int b) {
@@ -33,10 +39,11 @@ std::vector<int> SplitEdgesAtMidpoints(TriangleMesh& mesh, const std::vector<std
     const auto [a, b] = edges[static_cast<std::size_t>(c)];
     const int m = static_cast<int>(n + c);
     added.push_back(m);
-    mesh.V.row(m) = 0.5 * (mesh.V.row(a) + mesh.V.row(b));
+    const double w = t[static_cast<std::size_t>(c)];
+    mesh.V.row(m) = (1.0 - w) * mesh.V.row(a) + w * mesh.V.row(b);
     for (auto& [name, array] : mesh.pointData) {
-      if (array.integer) array.values.row(m) = array.values.row(a);
-      else array.values.row(m) = 0.5 * (array.values.row(a) + array.values.row(b));
+      if (array.integer) array.values.row(m) = array.values.row(w <= 0.5 ? a : b);
+      else array.values.row(m) = (1.0 - w) * array.values.row(a) + w * array.values.row(b);
     }
     const std::vector<int> shared = edgeFaces[key(a, b)];
     if (shared.empty())

@@ -2,6 +2,7 @@
 
 #include "Random.h"
 #include "TubeLocator.h"
+#include "VoxelLoop.h"
 
 #include <algorithm>
 #include <cmath>
@@ -19,6 +20,8 @@ double EllipseDistance(double x, double y, double a, double b) {
   return g > 1e-9 ? F / g : -std::min(a, b);
 }
 
+}  // namespace
+
 double BodyHU(const Eigen::Vector3d& p, const TissueModel& t, double W) {
   const double dOut = EllipseDistance(p.x(), p.y(), t.bodySemiAxisXMm, t.bodySemiAxisYMm);
   if (dOut >= W) return t.airHU;
@@ -26,28 +29,6 @@ double BodyHU(const Eigen::Vector3d& p, const TissueModel& t, double W) {
   return t.airHU + (t.softTissueHU - t.airHU) * PartialVolumeStep(-dOut, W) +
          (t.fatHU - t.softTissueHU) * PartialVolumeStep(-dIn, W);
 }
-
-// Loops over the grid in slabs of slices: parallel inside a slab, progress between slabs (a
-// Cancelled exception must not leave an OpenMP region).
-template <typename Voxel>
-void ForEachVoxel(const Volume<short>& geometry, ProgressSink& progress, Voxel&& voxel) {
-  const long nx = static_cast<long>(geometry.size[0]), ny = static_cast<long>(geometry.size[1]),
-             nz = static_cast<long>(geometry.size[2]);
-  const long slab = std::max(1L, 400000L / std::max(1L, nx * ny));
-  progress.Report(0.0);
-  for (long k0 = 0; k0 < nz; k0 += slab) {
-    const long k1 = std::min(nz, k0 + slab);
-    const long rows = (k1 - k0) * ny;
-#pragma omp parallel for schedule(dynamic, 4)
-    for (long r = 0; r < rows; ++r) {
-      const long k = k0 + r / ny, j = r % ny;
-      for (long i = 0; i < nx; ++i) voxel(i, j, k);
-    }
-    progress.Report(static_cast<double>(k1) / static_cast<double>(nz));
-  }
-}
-
-}  // namespace
 
 double PartialVolumeHalfWidth(const PhantomOptions& options) {
   const double h = options.spacing.mean();

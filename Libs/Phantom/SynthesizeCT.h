@@ -15,6 +15,8 @@
 #include <Core/Cancel.h>
 #include <Core/Volume.h>
 
+#include <Eigen/Core>
+
 namespace colonmap {
 namespace phantom {
 
@@ -25,6 +27,10 @@ Volume<short> CTGrid(const PhantomOptions& options);
 double PartialVolumeHalfWidth(const PhantomOptions& options);
 // The partial-volume step.
 double PartialVolumeStep(double d, double halfWidth);
+
+// HU of the body without the colon at p (LPS mm): air outside the elliptic abdomen (centred on
+// the z axis), the soft-tissue rim, fat inside, with the partial-volume step of half-width W.
+double BodyHU(const Eigen::Vector3d& p, const TissueModel& tissue, double W);
 
 // CT on CTGrid(options). Calls progress.Report() per slab of slices (outside parallel regions).
 Volume<short> SynthesizeCT(const ScanGeometry& scan, const PhantomOptions& options, ProgressSink& progress);

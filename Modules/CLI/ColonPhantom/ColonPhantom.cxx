@@ -7,6 +7,7 @@
 #include "IO/MarkupsIO.h"
 #include "IO/MeshIO.h"
 #include "Phantom/Phantom.h"
+#include "RealColon/RealColonPhantom.h"
 
 #include <nlohmann/json.hpp>
 
@@ -88,12 +89,140 @@ json Describe(const PhantomOptions& o, const ColonAnatomy& a, const ScanGeometry
   return j;
 }
 
+json StatsJson(const realcolon::Displacement& d) {
+  return {{"mean", d.mean}, {"median", d.median}, {"p90", d.p90}, {"max", d.max}, {"points", d.count}};
+}
+
+json DescribeReal(const PhantomOptions& o, const realcolon::RealColonOptions& ro, const realcolon::RealColonPair& p,
+                  const Volume<short>& ct) {
+  using realcolon::RealColonScan;
+  const realcolon::TubeMaterial& m = p.material;
+  json j;
+  j["generator"] = "ColonPhantom --realColon";
+  j["source"] = {{"name", p.source.name}, {"credit", p.source.credit}, {"notes", p.source.notes},
+                 {"translationMm", {p.translation.x(), p.translation.y(), p.translation.z()}}};
+  j["options"] = {{"seed", o.seed}, {"deformation", o.deformation}, {"fluid", o.fluid},
+                  {"spacing", {o.spacing.x(), o.spacing.y(), o.spacing.z()}}, {"trueWallGridMm", ro.lumen.gridMm}};
+  j["colonLengthMm"] = m.length;
+  j["proneCenterlineLengthMm"] = p.prone.arc(p.prone.arc.size() - 1);
+  const char* flexures[] = {"HF", "SF", "DSJ", "RSJ"};
+  for (int f = 0; f < 4; ++f) {
+    const double s = p.flexureS[static_cast<std::size_t>(f)];
+    j["flexures"][flexures[f]] = {{"materialS", s}, {"supineArcLength", p.supine.ArcOfS(m, s)},
+                                  {"proneArcLength", p.prone.ArcOfS(m, s)}, {"source", p.source.flexureSource[static_cast<std::size_t>(f)]}};
+  }
+  for (int k = 0; k < 5; ++k) {
+    const double s0 = k == 0 ? 0.0 : p.flexureS[static_cast<std::size_t>(k - 1)];
+    const double s1 = k == 4 ? m.length : p.flexureS[static_cast<std::size_t>(k)];
+    j["segments"][SegmentName(k)] = {
+        {"materialS", {s0, s1}},
+        {"supineLengthMm", p.supine.ArcOfS(m, s1) - p.supine.ArcOfS(m, s0)},
+        {"proneLengthMm", p.prone.ArcOfS(m, s1) - p.prone.ArcOfS(m, s0)},
+        {"proneStretch", p.proneStretch[static_cast<std::size_t>(k)]},
+        {"dilatation", SummaryJson(p.dilatation.segment[static_cast<std::size_t>(k)])},
+        {"noRegistration", StatsJson(p.displacementBySegment[static_cast<std::size_t>(k)])}};
+  }
+  j["dilatation"] = SummaryJson(p.dilatation.all);
+  j["dilatationNote"] = "K = sigma_max/sigma_min of the supine-to-prone map of each true-wall triangle";
+  j["noRegistration"] = StatsJson(p.displacement);
+  j["noRegistrationNote"] = "|prone - supine| of the evaluation points (mm): the error of taking supine positions as prone";
+  j["maxLocalStretch"] = p.maxLocalStretch;
+  j["materialCoordinates"] = {
+      {"method", "s: arc length of the centroids of the level sets of one harmonic function on the opened surface "
+                 "(0 on the caecal loop, 1 on the anal loop); theta: angle in the centreline's rotation-minimising frame"},
+      {"levels", m.levelF.size()}, {"harmonicExtrema", m.harmonicExtrema}, {"localExtrema", m.localExtrema},
+      {"checkedLevels", m.checkedLevels}, {"maxCurvesPerLevel", m.maxCurvesPerLevel}};
+  j["trueWall"] = {{"gridMm", ro.lumen.gridMm}, {"lumenMl", p.lumen.lumenMl},
+                   {"handleVoxelsCut", p.lumen.handleVoxelsRemoved}, {"cavityVoxelsFilled", p.lumen.cavityVoxelsFilled},
+                   {"wellComposedVoxels", p.lumen.wellComposedVoxels}, {"restoredVertices", p.lumen.restoredVertices},
+                   {"faces", p.supine.wall.F.rows()}, {"vertices", p.supine.wall.V.rows()},
+                   {"closedFaces", p.supine.closed.F.rows()}};
+  j["embedding"] = {{"supineCrossingFacePairs", p.supine.selfIntersections},
+                    {"proneCrossingFacePairs", p.prone.selfIntersections}};
+  json polyps = json::array();
+  for (const auto& q : p.polyps)
+    polyps.push_back({{"label", q.label}, {"type", q.pedunculated ? "pedunculated" : "sessile"},
+                      {"diameterMm", q.diameter}, {"heightMm", q.height}, {"materialS", q.s},
+                      {"materialTheta", q.theta}, {"segment", SegmentName(q.segment)}});
+  j["polyps"] = polyps;
+  j["taeniae"] = nullptr;
+  j["taeniaeNote"] = "not known on real colons; no taeniae files are written";
+  j["evaluationPoints"] = p.sites.size();
+  for (const RealColonScan* scan : {&p.supine, &p.prone}) {
+    json pools = json::array();
+    for (std::size_t k = 0; k < scan->pools.size(); ++k)
+      pools.push_back({{"materialS", {scan->poolS[k].first, scan->poolS[k].second}}, {"levelHeightMm", scan->pools[k].level}});
+    j[scan == &p.supine ? "supine" : "prone"] = {
+        {"fluidPools", pools}, {"fluidHU", scan->fluidHU},
+        {"gravity", scan == &p.supine ? "+y (posterior)" : "-y (anterior)"},
+        {"axisToLevelCentroidsMaxMm", scan->axisToCentroids}};
+  }
+  j["ct"] = {{"size", {ct.size[0], ct.size[1], ct.size[2]}},
+             {"origin", {ct.origin.x(), ct.origin.y(), ct.origin.z()}},
+             {"airHU", p.tissue.airHU}, {"fatHU", p.tissue.fatHU}, {"wallHU", p.tissue.wallHU},
+             {"wallThicknessMm", p.tissue.wallThicknessMm}, {"noiseSigmaHU", p.tissue.noiseSigmaHU},
+             {"bodySemiAxesMm", {p.tissue.bodySemiAxisXMm, p.tissue.bodySemiAxisYMm}}};
+  return j;
+}
+
+// The real-colon phantom (issue 17): same files as the tube's, no taeniae.
+void RunReal(cli::ModuleContext& ctx, const PhantomOptions& options, const std::string& source, const std::string& out) {
+  realcolon::RealColonOptions ro;
+  ro.phantom = options;
+  ro.lumen.gridMm = ctx.args.GetDouble("trueWallGrid");
+  if (!(ro.lumen.gridMm >= 0.5 && ro.lumen.gridMm <= 4.0))
+    throw Error("parameter --trueWallGrid: must be within 0.5..4 mm");
+  ctx.progress.Plan({{"Real colon", 12}, {"Supine CT", 20}, {"Prone CT", 20}, {"Writing", 10}});
+  ctx.progress.StartStage("Real colon", "real colon made genus 0, material coordinates, polyps, prone flow");
+  realcolon::ColonSource src = realcolon::ReadColonSource(source);
+  const realcolon::RealColonPair pair = realcolon::MakeRealColonPair(std::move(src), ro, ctx.progress);
+  ctx.progress.EndStage();
+  ctx.progress.StartStage("Supine CT", "synthetic CT, supine");
+  const Volume<short> supineCT = realcolon::RealColonCT(pair, Posture::Supine, ro, ctx.progress);
+  ctx.progress.EndStage();
+  ctx.progress.StartStage("Prone CT", "synthetic CT, prone");
+  const Volume<short> proneCT = realcolon::RealColonCT(pair, Posture::Prone, ro, ctx.progress);
+  ctx.progress.EndStage();
+
+  ctx.progress.StartStage("Writing", "writing the phantom files");
+  const auto file = [&](const std::string& name) {
+    return ctx.outputs.Stage((fs::path(out) / name).string(), "output " + name);
+  };
+  io::WriteImage(supineCT, file("supine.nrrd"), "supine CT", io::Compression::None);
+  ctx.progress.Report(0.35);
+  io::WriteImage(proneCT, file("prone.nrrd"), "prone CT", io::Compression::None);
+  ctx.progress.Report(0.7);
+  for (const Posture posture : {Posture::Supine, Posture::Prone}) {
+    const std::string p = posture == Posture::Supine ? "supine" : "prone";
+    io::WriteMesh(posture == Posture::Supine ? pair.supine.wall : pair.prone.wall, file(p + "_truth.vtp"), p + " true wall");
+    io::WriteMarkups(realcolon::RealPolypMarkups(pair, posture), file(p + "_polyps.mrk.json"), p + " polyps");
+    io::WriteMarkups(realcolon::RealEvaluationMarkups(pair, posture), file(p + "_eval.mrk.json"), p + " evaluation points");
+    io::WriteMarkups(realcolon::RealCentrelineMarkups(pair, posture, 5.0), file(p + "_centerline.mrk.json"), p + " centerline");
+    io::WriteMarkups(realcolon::RealFlexureMarkups(pair, posture), file(p + "_flexures.mrk.json"), p + " flexures");
+    ctx.progress.Report(posture == Posture::Supine ? 0.85 : 0.95);
+  }
+  io::WriteText(DescribeReal(options, ro, pair, supineCT).dump(2) + "\n", file("truth.json"), "truth.json");
+  ctx.progress.EndStage();
+
+  ctx.SetReturn("colonLength", cli::FormatFixed(pair.material.length, 1));
+  ctx.SetReturn("polypCount", std::to_string(pair.polyps.size()));
+  std::string times;
+  for (const auto& [step, seconds] : pair.seconds) times += (times.empty() ? "" : ", ") + step + " " + cli::FormatFixed(seconds, 2) + " s";
+  ctx.progress.Note("ColonPhantom: real colon " + pair.source.name + " (" + pair.source.credit + "): " +
+                    cli::FormatFixed(pair.material.length, 0) + " mm, " + std::to_string(pair.polyps.size()) +
+                    " polyps; no registration (supine positions as prone) " + cli::FormatFixed(pair.displacement.mean, 1) +
+                    " mm mean; written to " + out);
+  ctx.progress.Note("ColonPhantom: steps: " + times);
+}
+
 void Run(cli::ModuleContext& ctx) {
   const PhantomOptions options = OptionsFrom(ctx.args);
   const std::string out = ctx.args.GetString("outputDirectory");
   if (out.empty()) throw Error("parameter --outputDirectory: an output folder is required");
   // Checked first, so that a bad folder fails before minutes of work.
   ctx.outputs.PrepareDirectory(out, "output folder");
+  const std::string real = ctx.args.GetString("realColon");
+  if (!real.empty()) return RunReal(ctx, options, real, out);
   ctx.progress.Plan({{"Anatomy", 1}, {"Truth surfaces", 2}, {"Supine CT", 20}, {"Prone CT", 20},
                      {"Writing", 10}});
 
