@@ -8,7 +8,9 @@ ColonPhantom at clinical size (0.7 x 0.7 x 1.0 mm, 512 x 512 x 450) and at test 
 ColonCleansing -> ColonSegmentation -> ColonSurface on the clinical supine scan, one process
 each (per-module peak memory); then the whole pipeline, ColonSupineProne, on the clinical pair
 with the phantom's polyps as findings and its truth: time and peak memory of the whole, each
-stage's time, the registration error, and the paper's per-segment times beside ours.
+stage's time, the registration error, and the paper's per-segment times beside ours. Then the
+real-colon pairs (issue 17): ColonPhantom --realColon at 1 mm for each real colon in the shared
+data (time, peak memory, its step times), and the whole pipeline on the HuBMAP male pair at 1 mm.
 """
 import argparse
 import json
@@ -124,6 +126,30 @@ def flattening_vs_cgal(build, work):
         return json.load(f)
 
 
+def real_colons(cli, data, work):
+    """Issue 17: a real-colon pair at 1 mm per atlas (time, peak memory, steps), and the whole
+    pipeline on one of them (the HuBMAP male colon) with its truth."""
+    out = {}
+    for atlas in ("gca-00020", "hubmap-vhm-00070", "hubmap-vhf-00080"):
+        folder = os.path.join(data, atlas)
+        if not os.path.isdir(folder):
+            continue
+        pair = os.path.join(work, "real-" + atlas)
+        r = run_with_peak([os.path.join(cli, "ColonPhantom"), "--outputDirectory", pair, "--realColon", folder,
+                           "--spacing", "1,1,1"])
+        truth = json.load(open(os.path.join(pair, "truth.json")))
+        r["colonLengthMm"] = round(truth["colonLengthMm"], 1)
+        r["noRegistrationMeanMm"] = round(truth["noRegistration"]["mean"], 2)
+        r["ctSize"] = truth["ct"]["size"]
+        out[f"ColonPhantom --realColon {atlas} 1 mm"] = r
+        print(atlas, json.dumps(r))
+        if atlas == "hubmap-vhm-00070" and os.path.exists(os.path.join(cli, "ColonSupineProne")):
+            out["pipeline hubmap-vhm-00070 1 mm"] = pipeline(cli, pair, os.path.join(work, "real-pipeline"))
+            print("ColonSupineProne real pair", json.dumps(out["pipeline hubmap-vhm-00070 1 mm"]["whole"]))
+        shutil.rmtree(pair, ignore_errors=True)
+    return out
+
+
 def main():
     repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     parser = argparse.ArgumentParser()
@@ -159,6 +185,7 @@ def main():
             results["pipeline"] = pipeline(cli, clinical, os.path.join(work, "pipeline"))
             print("ColonSupineProne clinical pair", json.dumps(results["pipeline"]["whole"]))
         results["flatteningVsCgal"] = flattening_vs_cgal(args.build, work)
+        results["realColon"] = real_colons(cli, os.path.join(os.path.dirname(repo), "shared", "data"), work)
     finally:
         shutil.rmtree(work, ignore_errors=True)
     os.makedirs(os.path.dirname(os.path.abspath(args.output)), exist_ok=True)

@@ -114,13 +114,22 @@ ColonSource FromFolder(const std::string& dir) {
   if (t.boundaryLoops || t.components != 1 || t.nonManifoldEdges)
     throw InputError("real colon lumen surface", surfaceFile,
                      "must be one closed manifold surface (handles are allowed): " + t.Summary());
+  for (Eigen::Index i = 0; i < c.surface.V.rows(); ++i)
+    if (!c.surface.V.row(i).allFinite())
+      throw InputError("real colon lumen surface", surfaceFile, "has a point whose coordinates are not finite numbers");
   const MarkupList mid = io::ReadMarkups(midlineFile, "real colon midline");
   if (mid.points.size() < 2) throw InputError("real colon midline", midlineFile, "needs at least two points");
+  for (const ControlPoint& p : mid.points)
+    if (!p.position.allFinite()) throw InputError("real colon midline", midlineFile, "has a point whose coordinates are not finite numbers");
   c.midline.resize(static_cast<Eigen::Index>(mid.points.size()), 3);
   for (std::size_t i = 0; i < mid.points.size(); ++i) c.midline.row(static_cast<Eigen::Index>(i)) = mid.points[i].position.transpose();
   const MarkupList flex = io::ReadMarkups(flexureFile, "real colon flexures");
   std::map<std::string, Eigen::Vector3d> byLabel;
-  for (const ControlPoint& p : flex.points) byLabel[p.label] = p.position;
+  for (const ControlPoint& p : flex.points) {
+    if (!p.position.allFinite())
+      throw InputError("real colon flexures", flexureFile, "point " + p.label + " has coordinates that are not finite numbers");
+    byLabel[p.label] = p.position;
+  }
   for (int k = 0; k < 4; ++k) {
     if (!byLabel.count(kFlexureNames[k]))
       throw InputError("real colon flexures", flexureFile, std::string("has no point labelled ") + kFlexureNames[k]);

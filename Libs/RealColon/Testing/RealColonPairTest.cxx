@@ -4,6 +4,11 @@
 // with the same barycentric coordinates), the deformation model's bounds (local stretch, no
 // registration baseline), and determinism.
 #include "RealColon/RealColonPhantom.h"
+#include "Core/Error.h"
+#include "IO/MarkupsIO.h"
+#include "IO/MeshIO.h"
+#include "Phantom/Phantom.h"
+#include "Surface/MeshTopology.h"
 #include "Surface/SelfIntersection.h"
 
 #include <gtest/gtest.h>
@@ -11,6 +16,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <string>
@@ -108,11 +114,82 @@ INSTANTIATE_TEST_SUITE_P(Atlases, RealColonPairs,
                            return name;
                          });
 
+TEST(RealColonPair, WithoutDeformationTheProneScanIsTheSupineScan) {
+  RealColonOptions o;
+  o.phantom.deformation = 0.0;
+  NullProgress np;
+  const RealColonPair p = MakeRealColonPair(Source("hubmap-vhf-00080"), o, np);
+  EXPECT_LT((p.prone.closed.V - p.supine.closed.V).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_LT(p.displacement.max, 1e-9);
+  EXPECT_NEAR(p.dilatation.all.max, 1.0, 1e-9);
+}
+
 TEST(RealColonPair, IsTheSameOnASecondRun) {
   const RealColonPair a = Make("hubmap-vhf-00080", 3), b = Make("hubmap-vhf-00080", 3);
   EXPECT_TRUE(a.prone.closed.V == b.prone.closed.V);
   EXPECT_TRUE(a.supine.wall.V == b.supine.wall.V);
   EXPECT_EQ(a.sites.size(), b.sites.size());
+}
+
+// A folder of one's own (lumen.vtp, midline.mrk.json, flexures.mrk.json), made from the tube
+// phantom, whose material s and flexures are known exactly: the real-colon generator must find
+// the tube's flexures where the tube has them.
+TEST(RealColonPair, FromAFolderOfOnesOwnFindsTheFlexuresWhereTheyAre) {
+  phantom::PhantomOptions po;
+  po.seed = 4;
+  po.meshPointsAround = 96;
+  const phantom::ColonAnatomy anatomy = phantom::MakeAnatomy(po);
+  const phantom::ScanGeometry scan = phantom::MakeScan(anatomy, phantom::Posture::Supine, po);
+  TriangleMesh wall = phantom::TrueWall(scan, po);
+  wall.pointData.clear();
+  // Close both ends with a fan around each loop's centroid.
+  const auto loops = surface::BoundaryLoops(wall.F);
+  ASSERT_EQ(loops.size(), 2u);
+  Eigen::MatrixXd V(wall.V.rows() + 2, 3);
+  V.topRows(wall.V.rows()) = wall.V;
+  Eigen::MatrixXi F(wall.F.rows() + static_cast<Eigen::Index>(loops[0].size() + loops[1].size()), 3);
+  F.topRows(wall.F.rows()) = wall.F;
+  Eigen::Index f = wall.F.rows();
+  for (std::size_t l = 0; l < 2; ++l) {
+    const int c = static_cast<int>(wall.V.rows() + static_cast<Eigen::Index>(l));
+    V.row(c) = Eigen::RowVector3d::Zero();
+    for (int v : loops[l]) V.row(c) += wall.V.row(v) / static_cast<double>(loops[l].size());
+    for (std::size_t i = 0; i < loops[l].size(); ++i) F.row(f++) << loops[l][(i + 1) % loops[l].size()], loops[l][i], c;
+  }
+  wall.V = V;
+  wall.F = F;
+  const std::string dir = ::testing::TempDir() + "/colonmap-own-colon";
+  std::filesystem::create_directories(dir);
+  io::WriteMesh(wall, dir + "/lumen.vtp", "lumen");
+  io::WriteMarkups(phantom::ToMarkups(phantom::CenterlineSamples(scan, 2.0)), dir + "/midline.mrk.json", "midline");
+  io::WriteMarkups(phantom::Flexures(scan), dir + "/flexures.mrk.json", "flexures");
+
+  const ColonSource src = ReadColonSource(dir);
+  RealColonOptions o;
+  NullProgress np;
+  const RealColonPair p = MakeRealColonPair(src, o, np);
+  // Flexures at the tube's (as fractions of the length: our centreline cuts the bends a little).
+  for (int k = 0; k < 4; ++k) {
+    const double ours = p.flexureS[static_cast<std::size_t>(k)] / p.material.length;
+    const double truth = anatomy.flexureS[static_cast<std::size_t>(k)] / anatomy.length;
+    std::printf("%s at %.4f of the length (tube %.4f)\n", phantom::FlexureName(k), ours, truth);
+    EXPECT_NEAR(ours, truth, 0.015) << phantom::FlexureName(k);
+  }
+  std::printf("length %.1f mm (tube %.1f)\n", p.material.length, anatomy.length);
+  EXPECT_NEAR(p.material.length, anatomy.length, 0.05 * anatomy.length);
+  EXPECT_EQ(p.material.localExtrema, 0);
+  EXPECT_EQ(p.material.maxCurvesPerLevel, 1);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(RealColonPair, AFolderWithoutTheFilesIsRefusedNamingIt) {
+  try {
+    ReadColonSource(kData + "totalseg-example-ct");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("totalseg-example-ct"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("lumen.vtp"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
