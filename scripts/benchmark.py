@@ -10,7 +10,9 @@ each (per-module peak memory); then the whole pipeline, ColonSupineProne, on the
 with the phantom's polyps as findings and its truth: time and peak memory of the whole, each
 stage's time, the registration error, and the paper's per-segment times beside ours. Then the
 real-colon pairs (issue 17): ColonPhantom --realColon at 1 mm for each real colon in the shared
-data (time, peak memory, its step times), and the whole pipeline on the HuBMAP male pair at 1 mm.
+data (time, peak memory, its step times), CT to surface on the GCA supine scan, the whole
+pipeline on the HuBMAP male pair at 1 mm, and ColonSurface on the GCA colon voxelised at 2 and
+1 mm as a mask from another tool (label only, hundreds of handles).
 """
 import argparse
 import json
@@ -55,8 +57,12 @@ def run(cmd):
         raise SystemExit(f"benchmark command failed: {' '.join(cmd)}\n{r.stderr}")
     stages = {m.group(1): float(m.group(2)) for m in re.finditer(
         r"<filter-end><filter-name>(.*?)</filter-name><filter-time>([0-9.]+)</filter-time>", r.stdout)}
+    # The modules' own step times: a note "<Module>: steps: name 1.23 s, other 0.45 s".
+    steps = {}
+    for line in re.findall(r"^\w+: steps: (.*)$", r.stdout, re.M):
+        steps.update({m.group(1): float(m.group(2)) for m in re.finditer(r"\s*([^,]+?) ([0-9.]+) s(?:,|$)", line)})
     # ru_maxrss of children is the largest so far: valid for the first run that exceeds it.
-    return {"seconds": round(seconds, 3), "stages": stages,
+    return {"seconds": round(seconds, 3), "stages": stages, "steps": steps,
             "peakMemoryMB": round(peak / 1024, 1) if peak > before else None}
 
 
@@ -126,6 +132,42 @@ def flattening_vs_cgal(build, work):
         return json.load(f)
 
 
+def ct_to_surface(cli, ct, work, label):
+    """ColonCleansing -> ColonSegmentation -> ColonSurface (with the cleansed CT) on one scan, one
+    process each: time, peak memory and stage times of each, and their total."""
+    cleansed, lumen = os.path.join(work, "cleansed.nrrd"), os.path.join(work, "lumen.nrrd")
+    chain = [("ColonCleansing", [ct, cleansed]), ("ColonSegmentation", [cleansed, lumen]),
+             ("ColonSurface", [lumen, os.path.join(work, "surface.vtp"), "--referenceCT", cleansed])]
+    out, total = {}, 0.0
+    for module, module_args in chain:
+        if not os.path.exists(os.path.join(cli, module)):
+            break
+        out[f"{module} {label}"] = run_with_peak([os.path.join(cli, module)] + module_args)
+        total += out[f"{module} {label}"]["seconds"]
+        print(module, label, json.dumps(out[f"{module} {label}"]))
+    out[f"CT to surface, {label}, total seconds"] = round(total, 3)
+    return out
+
+
+def foreign_masks(cli, build, data, work):
+    """Issue 18: ColonSurface on lumen masks as another tool delivers them (the GCA colon
+    voxelised at 2 and 1 mm: hundreds of handles), label only."""
+    maker = os.path.join(build, "Modules", "CLI", "ColonSurface", "Testing", "ColonSurfaceMakeAtlasMask")
+    folder = os.path.join(data, "gca-00020")
+    out = {}
+    if not (os.path.exists(maker) and os.path.isdir(folder)):
+        return out
+    for spacing in ("2", "1"):
+        mask = os.path.join(work, f"gca_mask_{spacing}.nii.gz")
+        made = subprocess.run([maker, folder, mask, spacing], capture_output=True, text=True)
+        handles = re.search(r"handles (\d+)", made.stdout)
+        r = run_with_peak([os.path.join(cli, "ColonSurface"), mask, os.path.join(work, "mask_surface.vtp")])
+        r["maskHandles"] = int(handles.group(1)) if handles else None
+        out[f"ColonSurface label only, GCA voxelised {spacing} mm"] = r
+        print("ColonSurface mask", spacing, json.dumps(r))
+    return out
+
+
 def real_colons(cli, data, work):
     """Issue 17: a real-colon pair at 1 mm per atlas (time, peak memory, steps), and the whole
     pipeline on one of them (the HuBMAP male colon) with its truth."""
@@ -143,6 +185,8 @@ def real_colons(cli, data, work):
         r["ctSize"] = truth["ct"]["size"]
         out[f"ColonPhantom --realColon {atlas} 1 mm"] = r
         print(atlas, json.dumps(r))
+        if atlas == "gca-00020":
+            out.update(ct_to_surface(cli, os.path.join(pair, "supine.nrrd"), work, "gca-00020 1 mm supine"))
         if atlas == "hubmap-vhm-00070" and os.path.exists(os.path.join(cli, "ColonSupineProne")):
             out["pipeline hubmap-vhm-00070 1 mm"] = pipeline(cli, pair, os.path.join(work, "real-pipeline"))
             print("ColonSupineProne real pair", json.dumps(out["pipeline hubmap-vhm-00070 1 mm"]["whole"]))
@@ -168,24 +212,14 @@ def main():
             results["runs"][label] = run([os.path.join(cli, "ColonPhantom"), "--outputDirectory", out,
                                           "--spacing", spacing])
             print(label, json.dumps(results["runs"][label]))
-        chain = [("ColonCleansing", [os.path.join(clinical, "supine.nrrd"), os.path.join(work, "cleansed.nrrd")]),
-                 ("ColonSegmentation", [os.path.join(work, "cleansed.nrrd"), os.path.join(work, "lumen.nrrd")]),
-                 ("ColonSurface", [os.path.join(work, "lumen.nrrd"), os.path.join(work, "surface.vtp"),
-                                   "--referenceCT", os.path.join(work, "cleansed.nrrd")])]
-        total = 0.0
-        for module, module_args in chain:
-            if not os.path.exists(os.path.join(cli, module)):
-                break
-            label = f"{module} clinical supine"
-            results["runs"][label] = run_with_peak([os.path.join(cli, module)] + module_args)
-            total += results["runs"][label]["seconds"]
-            print(label, json.dumps(results["runs"][label]))
-        results["runs"]["CT to surface, clinical supine, total seconds"] = round(total, 3)
+        results["runs"].update(ct_to_surface(cli, os.path.join(clinical, "supine.nrrd"), work, "clinical supine"))
         if os.path.exists(os.path.join(cli, "ColonSupineProne")):
             results["pipeline"] = pipeline(cli, clinical, os.path.join(work, "pipeline"))
             print("ColonSupineProne clinical pair", json.dumps(results["pipeline"]["whole"]))
         results["flatteningVsCgal"] = flattening_vs_cgal(args.build, work)
-        results["realColon"] = real_colons(cli, os.path.join(os.path.dirname(repo), "shared", "data"), work)
+        data = os.path.join(os.path.dirname(repo), "shared", "data")
+        results["realColon"] = real_colons(cli, data, work)
+        results["foreignMasks"] = foreign_masks(cli, args.build, data, work)
     finally:
         shutil.rmtree(work, ignore_errors=True)
     os.makedirs(os.path.dirname(os.path.abspath(args.output)), exist_ok=True)

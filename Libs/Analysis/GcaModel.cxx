@@ -3,21 +3,18 @@
 #include "Analysis/MidlineProjection.h"
 #include "Core/Error.h"
 #include "IO/MeshIO.h"
-#include "Segmentation/LumenSegmentation.h"
-#include "Segmentation/WellComposed.h"
+#include "Segmentation/LumenTopology.h"
 #include "Surface/MeshTopology.h"
 #include "Surface/SurfaceDistance.h"
 #include "Surface/SurfaceReconstruction.h"
+#include "Surface/InsideMask.h"
 #include "Surface/VtkConversion.h"
 
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 #include <vtkImageData.h>
-#include <vtkImageGaussianSmooth.h>
-#include <vtkImageStencilToImage.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
-#include <vtkPolyDataToImageStencil.h>
 #include <vtkStaticCleanPolyData.h>
 
 #include <algorithm>
@@ -413,44 +410,29 @@ GcaWeld WeldGcaColon(const GcaModel& model, double toleranceMm) {
   return w;
 }
 
-LumenBall GenusZeroBall(const TriangleMesh& m, double spacingMm, ProgressSink* progress) {
-  LumenBall out;
-  // Grid: the bounding box plus a margin of 4 voxels (the lumen must not touch the image sides,
-  // or the segmentation takes it for air outside the body).
+Volume<unsigned char> VoxeliseSurface(const TriangleMesh& m, double spacingMm) {
+  // Grid: the bounding box plus a margin of 4 voxels.
   const Eigen::RowVector3d lo = m.V.colwise().minCoeff().array() - 4 * spacingMm;
   const Eigen::RowVector3d hi = m.V.colwise().maxCoeff().array() + 4 * spacingMm;
-  Volume<short> ct;
-  for (int k = 0; k < 3; ++k) ct.size[static_cast<std::size_t>(k)] = static_cast<std::size_t>(std::ceil((hi(k) - lo(k)) / spacingMm)) + 1;
-  ct.spacing = Eigen::Vector3d::Constant(spacingMm);
-  ct.origin = lo.transpose();
+  Volume<unsigned char> mask;
+  for (int k = 0; k < 3; ++k) mask.size[static_cast<std::size_t>(k)] = static_cast<std::size_t>(std::ceil((hi(k) - lo(k)) / spacingMm)) + 1;
+  mask.spacing = Eigen::Vector3d::Constant(spacingMm);
+  mask.origin = lo.transpose();
 
-  vtkNew<vtkPolyData> pd;
-  surface::ToPolyData(m, pd);
-  vtkNew<vtkPolyDataToImageStencil> stencil;
-  stencil->SetInputData(pd);
-  stencil->SetOutputOrigin(ct.origin.data());
-  double spacing[3] = {spacingMm, spacingMm, spacingMm};
-  stencil->SetOutputSpacing(spacing);
-  int extent[6] = {0, static_cast<int>(ct.size[0]) - 1, 0, static_cast<int>(ct.size[1]) - 1, 0,
-                   static_cast<int>(ct.size[2]) - 1};
-  stencil->SetOutputWholeExtent(extent);
-  vtkNew<vtkImageStencilToImage> toImage;
-  toImage->SetInputConnection(stencil->GetOutputPort());
-  toImage->SetInsideValue(-1000);
-  toImage->SetOutsideValue(40);
-  toImage->SetOutputScalarTypeToShort();
-  toImage->Update();
-  vtkImageData* img = toImage->GetOutput();
-  const short* src = static_cast<const short*>(img->GetScalarPointer());
-  ct.voxels.assign(src, src + ct.NumberOfVoxels());
+  surface::FillInsideMask(m, mask);
+  return mask;
+}
 
+LumenBall GenusZeroBall(const TriangleMesh& m, double spacingMm, ProgressSink* progress) {
   NullProgress none;
-  segmentation::LumenSegmentation seg = segmentation::SegmentColonLumen(ct, {}, progress ? *progress : none);
-  out.lumenMl = seg.lumenVolumeMl;
-  out.handleVoxelsRemoved = seg.handleVoxelsRemoved;
-  out.cavityVoxelsFilled = seg.cavityVoxelsFilled;
-  out.ball = std::move(seg.label);
-  out.wellComposedVoxels = segmentation::MakeWellComposed(out.ball);
+  segmentation::LumenTopology t = segmentation::SimplifyLumenTopology(VoxeliseSurface(m, spacingMm), 2, progress ? *progress : none);
+  LumenBall out;
+  out.ball = std::move(t.ball);
+  out.lumenMl = static_cast<double>(std::count(out.ball.voxels.begin(), out.ball.voxels.end(), 1)) * spacingMm * spacingMm * spacingMm / 1000.0;
+  out.handles = t.handles;
+  out.handleVoxelsRemoved = t.handleVoxelsRemoved;
+  out.cavityVoxelsFilled = t.cavityVoxelsFilled;
+  out.wellComposedVoxels = t.wellComposedVoxels;
   return out;
 }
 
@@ -458,44 +440,20 @@ GcaGenusZero GenusZeroGcaColon(const GcaWeld& weld, double spacingMm, long targe
   const auto t0 = std::chrono::steady_clock::now();
   GcaGenusZero g;
   const TriangleMesh& m = weld.colon;
-  LumenBall lumen = GenusZeroBall(m, spacingMm);
-  g.lumenMl = lumen.lumenMl;
-  g.handleVoxelsRemoved = lumen.handleVoxelsRemoved;
-  g.cavityVoxelsFilled = lumen.cavityVoxelsFilled;
-  g.wellComposedVoxels = lumen.wellComposedVoxels;
-  const Volume<unsigned char>& ball = lumen.ball;
-  NullProgress np;
-  // A smooth field whose sign pattern at the voxel centres is the ball's: the Gaussian-smoothed
-  // ball (sigma 0.7 voxel, as ColonSurface's label path), clamped to [0.55, 1] on the ball and
-  // [0, 0.45] off it, written as a CT (0 -> 40 HU, 1 -> -1000 HU). Unclamped, the smoothing
-  // bridges the one-voxel gaps where the growth cut a handle (measured: genus 3 at 2 mm, 6 at
-  // sigma 1.4), and its iso-surface does not follow the ball's topology.
-  Volume<float> field = ball.Like<float>(0.0f);
-  std::copy(ball.voxels.begin(), ball.voxels.end(), field.voxels.begin());
-  {
-    vtkNew<vtkImageData> image;
-    surface::ToImageData(field, image);
-    vtkNew<vtkImageGaussianSmooth> smooth;
-    smooth->SetInputData(image);
-    smooth->SetDimensionality(3);
-    smooth->SetStandardDeviations(0.7, 0.7, 0.7);
-    smooth->SetRadiusFactors(3.0, 3.0, 3.0);
-    smooth->Update();
-    surface::FromImageData(smooth->GetOutput(), field);
-  }
-  Volume<short> pv = ball.Like<short>(40);
-  for (std::size_t v = 0; v < pv.voxels.size(); ++v) {
-    const float f = ball.voxels[v] ? std::max(field.voxels[v], 0.55f) : std::min(field.voxels[v], 0.45f);
-    pv.voxels[v] = static_cast<short>(std::lround(40.0 - 1040.0 * f));
-  }
-  Volume<float> label = ball.Like<float>(0.0f);
-  std::copy(ball.voxels.begin(), ball.voxels.end(), label.voxels.begin());
+  const Volume<unsigned char> mask = VoxeliseSurface(m, spacingMm);
+  Volume<float> label = mask.Like<float>(0.0f);
+  std::copy(mask.voxels.begin(), mask.voxels.end(), label.voxels.begin());
   surface::SurfaceOptions so;
   so.targetFaces = targetFaces;
-  surface::SurfaceResult sr = surface::ReconstructSurface(label, &pv, so, np);
-  if (!sr.topology.IsClosedGenusZero())
-    throw Error("GCA colon: the reconstructed surface is not closed genus 0: " + sr.topology.Summary());
-  g.contouredCT = sr.usedCT;
+  NullProgress np;
+  surface::SurfaceResult sr = surface::ReconstructSurface(label, nullptr, so, np);
+  g.lumenMl = static_cast<double>(sr.lumenVoxels - static_cast<long>(sr.changes.handleVoxelsRemoved) +
+                                  static_cast<long>(sr.changes.cavityVoxelsFilled)) *
+              spacingMm * spacingMm * spacingMm / 1000.0;
+  g.handleVoxelsRemoved = sr.changes.handleVoxelsRemoved;
+  g.cavityVoxelsFilled = sr.changes.cavityVoxelsFilled;
+  g.wellComposedVoxels = sr.changes.wellComposedVoxels;
+  g.handles = sr.changes.handles;
   g.notes = sr.notes;
   g.colon = std::move(sr.mesh);
   Summarize(DistancesTo(g.colon.V, m), g.toWeldMean, g.toWeldP99, g.toWeldMax);

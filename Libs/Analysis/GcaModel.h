@@ -95,21 +95,23 @@ struct GcaWeld {
 // of faces or caps removes; see GenusZeroGcaColon.
 GcaWeld WeldGcaColon(const GcaModel& model, double toleranceMm = 0.05);
 
-// A closed surface voxelised and made a topological ball, well-composed.
+// A closed surface voxelised (surface::FillInsideMask: parity along rays, so handles and
+// self-touching walls do not matter) on a spacingMm grid over its bounding box plus 4 voxels:
+// 1 inside, 0 outside.
+Volume<unsigned char> VoxeliseSurface(const TriangleMesh& closedSurface, double spacingMm);
+
+// The same made a topological ball, well-composed (segmentation::SimplifyLumenTopology: the
+// largest component, cavities filled, handles cut at their thinnest places), so that any field
+// with the ball's sign at the voxel centres contours to a closed manifold genus-0 surface.
 struct LumenBall {
-  Volume<unsigned char> ball;           // 1 inside, 0 outside; one 26-component, genus 0, well-composed
+  Volume<unsigned char> ball;           // on a crop of the voxel grid, geometry set; 1 inside
   double lumenMl = 0.0;
+  long handles = 0;                     // handles of the voxelised lumen
   std::size_t handleVoxelsRemoved = 0;  // voxels the topology-preserving growth left out
   std::size_t cavityVoxelsFilled = 0;
   long wellComposedVoxels = 0;          // voxels added or removed (simple points) to make it well-composed
 };
-
-// The voxel half of GenusZeroGcaColon (below), for any closed surface: voxelised on a
-// spacingMm grid over its bounding box plus 4 voxels, segmented by
-// segmentation::SegmentColonLumen (cavities filled, handles cut at their thinnest place) and
-// made well-composed (segmentation::MakeWellComposed), so that any field with the ball's sign
-// at the voxel centres contours to a closed manifold genus-0 surface.
-// progress (optional) gets the segmentation's reports (and its Cancelled).
+// progress (optional) gets the topology step's reports (and its Cancelled).
 LumenBall GenusZeroBall(const TriangleMesh& closedSurface, double spacingMm, ProgressSink* progress = nullptr);
 
 struct GcaGenusZero {
@@ -118,30 +120,20 @@ struct GcaGenusZero {
   std::size_t handleVoxelsRemoved = 0;  // voxels the topology-preserving growth left out
   std::size_t cavityVoxelsFilled = 0;
   long wellComposedVoxels = 0;  // voxels added or removed (simple points) to make the ball well-composed
+  long handles = 0;             // handles of the voxelised weld
   // Distance (mm) from each vertex of `colon` to the welded surface, and from each vertex of
   // the welded surface to `colon` (large where a handle was cut).
   double toWeldMean = 0.0, toWeldP99 = 0.0, toWeldMax = 0.0;
   double fromWeldMean = 0.0, fromWeldP99 = 0.0, fromWeldMax = 0.0;
   double seconds = 0.0;
-  bool contouredCT = false;        // the CT-like field's surface was used (false: the label alone)
-  std::vector<std::string> notes;  // ReconstructSurface's notes: what was retried and why
+  std::vector<std::string> notes;  // ReconstructSurface's notes: what its topology step changed
 };
 
-// The welded colon made genus 0 the way our pipeline makes a CT lumen genus 0: the closed
-// welded surface is voxelised (vtkPolyDataToImageStencil, parity along rays, so handles and
-// self-touching walls do not matter) on a spacingMm grid as a CT (lumen -1000 HU, wall 40 HU),
-// segmented by segmentation::SegmentColonLumen (cavities filled, ball grown deepest first from
-// the deepest voxel adding only simple points: each handle is cut at its thinnest place), made
-// well-composed by simple-point changes (see the .cxx: marching cubes then cannot open handles
-// at diagonal voxel contacts), and contoured by surface::ReconstructSurface on a CT-like field
-// (the Gaussian-smoothed ball clamped so that its sign at every voxel centre is the ball's;
-// decimated to about targetFaces, windowed-sinc smoothed), with ReconstructSurface's fallbacks
-// (measured at 1.5 mm, 200K faces: the CT-like surface and its retry keep 6 non-manifold edges
-// after decimation, and the label-only contour, the same ball smoothed without the clamp, is
-// what is returned; contouredCT and notes say so). Error if any step fails or the result is not
-// closed genus 0.
-// Measured (2 mm grid, 200K faces): 4.4 s; vertices of the result within 0.25 mm (mean) of
-// the weld; before the well-composed repair the contour had genus 3-29 depending on smoothing.
+// The welded colon made genus 0 the way our surface stage makes any lumen mask genus 0: the
+// closed welded surface voxelised on a spacingMm grid (VoxeliseSurface) and given to
+// surface::ReconstructSurface as a label map (its topology step keeps one component, fills
+// cavities and cuts each handle at its thinnest place; contour of the label smoothed with its
+// sign kept, manifold decimation to about targetFaces). Error if any step fails.
 GcaGenusZero GenusZeroGcaColon(const GcaWeld& weld, double spacingMm = 2.0, long targetFaces = 200000);
 
 }  // namespace colonmap::analysis

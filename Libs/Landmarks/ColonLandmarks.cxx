@@ -3,6 +3,7 @@
 #include "Analysis/MidlineProjection.h"
 #include "Core/Error.h"
 #include "Surface/MeshTopology.h"
+#include "Surface/SignedVolume.h"
 
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
@@ -26,16 +27,6 @@ class SubProgress : public ProgressSink {
   ProgressSink& parent_;
   double from_, to_;
 };
-
-double SignedVolume(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
-  double vol = 0;
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-  {
-    const Eigen::Vector3d a = V.row(F(f, 0)).transpose(), b = V.row(F(f, 1)).transpose(), c = V.row(F(f, 2)).transpose();
-    vol += a.dot(b.cross(c)) / 6.0;
-  }
-  return vol;
-}
 
 std::string Fixed(double v, int digits) {
   char buf[64];
@@ -80,7 +71,7 @@ LandmarkResult FindLandmarks(TriangleMesh closed, const LandmarkOptions& o, Prog
     throw Error("the surface has " + std::to_string(closed.F.rows()) + " triangles, too few for a colon (at least " +
                 std::to_string(o.minFaces) + ")");
   // Normals into the lumen: a closed surface oriented so has negative signed volume.
-  if (SignedVolume(closed.V, closed.F) > 0) {
+  if (surface::SignedVolume(closed.V, closed.F) > 0) {
     closed.F.col(1).swap(closed.F.col(2));
     r.flippedOrientation = true;
   }

@@ -1,6 +1,7 @@
 #include "ScanGeometry.h"
 
 #include "PhantomCenterline.h"
+#include "PoolPlacement.h"
 #include "Random.h"
 
 #include <Eigen/Geometry>
@@ -85,8 +86,8 @@ void MakeProneMaps(ScanGeometry& scan, const std::vector<Eigen::Vector3d>& point
   scan.ellipseAngle = Pchip(ws, ea);
 }
 
-// Pools at the lowest places of the lumen floor, each filled to a seeded fraction of the local
-// diameter; the level is flat, so the pool is the lumen below one height.
+// Pools at the lowest places of the lumen floor (PoolPlacement.h); the level is flat, so the
+// pool is the lumen below one height.
 void MakePools(ScanGeometry& scan) {
   const double du = 2.0, L = scan.centerline.Length();
   const int nu = static_cast<int>(std::floor(L / du)) + 1;
@@ -97,36 +98,16 @@ void MakePools(ScanGeometry& scan) {
     for (int k = 0; k < 48; ++k) h = std::min(h, scan.Height(scan.WallPoint(s, 2.0 * kPi * k / 48.0)));
     floorH[i] = h;
   }
-  std::vector<int> candidates;
-  const int window = 30;
-  for (int i = 20; i < nu - 20; ++i) {
-    bool isMin = true;
-    for (int j = std::max(0, i - window); j <= std::min(nu - 1, i + window) && isMin; ++j)
-      if (floorH[j] < floorH[i] || (floorH[j] == floorH[i] && j < i)) isMin = false;
-    if (isMin) candidates.push_back(i);
-  }
-  std::sort(candidates.begin(), candidates.end(), [&](int x, int y) { return floorH[x] < floorH[y]; });
   Rng rng(scan.anatomy.seed, scan.posture == Posture::Supine ? 201 : 202);
   scan.fluidHU = rng.Uniform(600.0, 900.0);
   const int wanted = rng.Integer(2, 4);
-  std::vector<std::pair<int, int>> ranges;
-  for (int c : candidates) {
-    if (static_cast<int>(scan.pools.size()) >= wanted) break;
-    const double s = scan.MaterialS(c * du);
-    const double level = floorH[c] + rng.Uniform(0.2, 0.4) * 2.0 * scan.anatomy.BaseRadius(s);
-    int lo = c, hi = c;
-    while (lo > 0 && floorH[lo - 1] < level) --lo;
-    while (hi < nu - 1 && floorH[hi + 1] < level) ++hi;
-    bool clear = true;
-    for (const auto& r : ranges)
-      if (lo - 75 <= r.second && hi + 75 >= r.first) clear = false;  // apart by >= 150 mm
-    if (!clear) continue;
-    ranges.emplace_back(lo, hi);
+  const auto diameter = [&](int i) { return 2.0 * scan.anatomy.BaseRadius(scan.MaterialS(i * du)); };
+  for (const PoolPlace& p : PlacePools(floorH, du, diameter, wanted, rng)) {
     FluidPool pool;
-    pool.u0 = lo == 0 ? -1e9 : lo * du - du;
-    pool.u1 = hi == nu - 1 ? 1e9 : hi * du + du;
-    pool.level = level;
-    pool.deepestU = c * du;
+    pool.u0 = p.lo == 0 ? -1e9 : p.lo * du - du;
+    pool.u1 = p.hi == nu - 1 ? 1e9 : p.hi * du + du;
+    pool.level = p.level;
+    pool.deepestU = p.deepest * du;
     scan.pools.push_back(pool);
   }
 }

@@ -4,13 +4,8 @@
 #include "Phantom/Random.h"
 #include "Phantom/SynthesizeCT.h"
 #include "Phantom/VoxelLoop.h"
-#include "Surface/VtkConversion.h"
+#include "Surface/InsideMask.h"
 
-#include <vtkImageData.h>
-#include <vtkImageStencilToImage.h>
-#include <vtkNew.h>
-#include <vtkPolyData.h>
-#include <vtkPolyDataToImageStencil.h>
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -99,28 +94,8 @@ std::vector<float> BandDistance(const TriangleMesh& mesh, const Volume<short>& g
 }  // namespace
 
 Volume<unsigned char> MeshLumenMask(const TriangleMesh& lumen, const Volume<short>& grid) {
-  if ((grid.direction - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-9)
-    throw Error("mesh CT: the grid must have the identity direction");
-  vtkNew<vtkPolyData> pd;
-  surface::ToPolyData(lumen, pd);
-  vtkNew<vtkPolyDataToImageStencil> stencil;
-  stencil->SetInputData(pd);
-  double origin[3] = {grid.origin.x(), grid.origin.y(), grid.origin.z()};
-  double spacing[3] = {grid.spacing.x(), grid.spacing.y(), grid.spacing.z()};
-  stencil->SetOutputOrigin(origin);
-  stencil->SetOutputSpacing(spacing);
-  int extent[6] = {0, static_cast<int>(grid.size[0]) - 1, 0, static_cast<int>(grid.size[1]) - 1, 0,
-                   static_cast<int>(grid.size[2]) - 1};
-  stencil->SetOutputWholeExtent(extent);
-  vtkNew<vtkImageStencilToImage> toImage;
-  toImage->SetInputConnection(stencil->GetOutputPort());
-  toImage->SetInsideValue(1);
-  toImage->SetOutsideValue(0);
-  toImage->SetOutputScalarTypeToUnsignedChar();
-  toImage->Update();
   Volume<unsigned char> mask = grid.Like<unsigned char>(0);
-  const unsigned char* src = static_cast<const unsigned char*>(toImage->GetOutput()->GetScalarPointer());
-  std::copy(src, src + mask.NumberOfVoxels(), mask.voxels.begin());
+  surface::FillInsideMask(lumen, mask);
   return mask;
 }
 

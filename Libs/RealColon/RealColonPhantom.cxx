@@ -2,6 +2,7 @@
 
 #include "Analysis/MidlineProjection.h"
 #include "Core/Error.h"
+#include "Phantom/PoolPlacement.h"
 #include "Phantom/Random.h"
 #include "Phantom/SynthesizeCT.h"
 #include "RealColon/MidlineAlignment.h"
@@ -44,25 +45,14 @@ Eigen::Index LevelIndex(const TubeMaterial& m, double s) {
                                   m.levelF.size() - 1);
 }
 
-// Arc length along the polyline of the point nearest to p.
-double ArcOfNearest(const Eigen::MatrixXd& P, const Eigen::Vector3d& p) {
-  double best = std::numeric_limits<double>::infinity(), arc = 0.0, run = 0.0;
-  for (Eigen::Index i = 0; i + 1 < P.rows(); ++i) {
-    const Eigen::Vector3d a = P.row(i), b = P.row(i + 1);
-    const double len = (b - a).norm();
-    const double t = len > 0 ? std::clamp((p - a).dot(b - a) / (len * len), 0.0, 1.0) : 0.0;
-    const double d = (a + t * (b - a) - p).norm();
-    if (d < best) best = d, arc = run + t * len;
-    run += len;
-  }
-  return arc;
-}
-
 // Flexures on our centreline: the source midline (anus first) aligned in order to our
 // centreline read from the anal end.
 std::array<double, 4> FlexureS(const ColonSource& src, const TubeMaterial& m) {
-  Eigen::VectorXd arcs(4);
-  for (int k = 0; k < 4; ++k) arcs(k) = ArcOfNearest(src.midline, src.flexures[static_cast<std::size_t>(k)]);
+  Eigen::MatrixXd points(4, 3);
+  for (int k = 0; k < 4; ++k) points.row(k) = src.flexures[static_cast<std::size_t>(k)].transpose();
+  analysis::ProjectionOptions nearest;
+  nearest.excludeBeyondEnds = false;
+  const Eigen::VectorXd arcs = analysis::ProjectToMidline(points, src.midline, nearest).arc;
   const Eigen::MatrixXd fromAnus = m.centroid.colwise().reverse();
   const Eigen::VectorXd matched = AlignAlongCurve(src.midline, fromAnus, arcs);
   std::array<double, 4> s{};
@@ -343,9 +333,8 @@ std::vector<RealSite> PlaceSites(const TriangleMesh& closed, const TubeMaterial&
   return sites;
 }
 
-// Pools at the lowest places of the lumen floor along the colon, each filled to a seeded
-// fraction of the local diameter (the tube phantom's rule, Phantom/ScanGeometry.cxx), apart
-// by 150 mm or more.
+// Pools at the lowest places of the lumen floor along the colon, the tube phantom's rule
+// (Phantom/PoolPlacement.h).
 void MakePools(RealColonScan& scan, const TubeMaterial& m, std::uint32_t seed) {
   Rng rng(seed, scan.posture == Posture::Supine ? 201 : 202);
   scan.fluidHU = rng.Uniform(600.0, 900.0);
@@ -360,32 +349,13 @@ void MakePools(RealColonScan& scan, const TubeMaterial& m, std::uint32_t seed) {
     floorP[i] = scan.centreline.lowest.row(l).transpose();
     floorH[i] = -scan.down.dot(floorP[i]);
   }
-  std::vector<int> candidates;
-  const int window = 30;
-  for (int i = 20; i < nu - 20; ++i) {
-    bool isMin = true;
-    for (int j = std::max(0, i - window); j <= std::min(nu - 1, i + window) && isMin; ++j)
-      if (floorH[j] < floorH[i] || (floorH[j] == floorH[i] && j < i)) isMin = false;
-    if (isMin) candidates.push_back(i);
-  }
-  std::sort(candidates.begin(), candidates.end(), [&](int x, int y) { return floorH[x] != floorH[y] ? floorH[x] < floorH[y] : x < y; });
-  std::vector<std::pair<int, int>> ranges;
-  for (int c : candidates) {
-    if (static_cast<int>(scan.pools.size()) >= wanted) break;
-    const double level = floorH[c] + rng.Uniform(0.2, 0.4) * 2.0 * scan.centreline.radius(LevelIndex(m, c * du));
-    int lo = c, hi = c;
-    while (lo > 0 && floorH[lo - 1] < level) --lo;
-    while (hi < nu - 1 && floorH[hi + 1] < level) ++hi;
-    bool clear = true;
-    for (const auto& r : ranges)
-      if (lo - 75 <= r.second && hi + 75 >= r.first) clear = false;
-    if (!clear) continue;
-    ranges.emplace_back(lo, hi);
+  const auto diameter = [&](int i) { return 2.0 * scan.centreline.radius(LevelIndex(m, i * du)); };
+  for (const phantom::PoolPlace& p : phantom::PlacePools(floorH, du, diameter, wanted, rng)) {
     FluidPoolSpec pool;
-    pool.seed = floorP[c] - 1.0 * scan.down;  // 1 mm above the floor, in the lumen
-    pool.level = level;
+    pool.seed = floorP[p.deepest] - 1.0 * scan.down;  // 1 mm above the floor, in the lumen
+    pool.level = p.level;
     scan.pools.push_back(pool);
-    scan.poolS.emplace_back(lo * du, std::min(L, hi * du));
+    scan.poolS.emplace_back(p.lo * du, std::min(L, p.hi * du));
   }
 }
 

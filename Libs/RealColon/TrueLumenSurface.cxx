@@ -4,6 +4,7 @@
 #include "Core/Error.h"
 #include "Surface/MeshTopology.h"
 #include "Surface/SelfIntersection.h"
+#include "Surface/SignedVolume.h"
 #include "Surface/VtkConversion.h"
 
 #include <vtkFlyingEdges3D.h>
@@ -18,15 +19,6 @@
 
 namespace colonmap::realcolon {
 namespace {
-
-double SignedVolume(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
-  double v = 0.0;
-  for (Eigen::Index f = 0; f < F.rows(); ++f) {
-    const Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
-    v += a.dot(b.cross(c));
-  }
-  return v / 6.0;
-}
 
 // Smoothing can push a few faces through others where the contour is tight (a cut handle, two
 // walls a voxel apart). Their vertices and those around them go back to the contour's
@@ -123,7 +115,7 @@ TrueLumen MakeTrueLumen(const TriangleMesh& closedSurface, const TrueLumenOption
   }
   if (!t.IsClosedGenusZero())
     throw Error("true lumen: the contour of the genus-0 ball is not a closed genus-0 manifold: " + t.Summary());
-  if (SignedVolume(mesh.V, mesh.F) > 0) mesh.F.col(1).swap(mesh.F.col(2));  // outward -> into the lumen
+  if (surface::SignedVolume(mesh.V, mesh.F) > 0) mesh.F.col(1).swap(mesh.F.col(2));  // outward -> into the lumen
   out.surface = std::move(mesh);
   return out;
 }

@@ -4,6 +4,7 @@
 #include "Segmentation/SimplePoint.h"
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 #include <string>
 
@@ -41,29 +42,68 @@ struct Grid {
 
 }  // namespace
 
+namespace {
+// Whether each voxel row (j, k) holds a set voxel: cube rows whose four voxel rows are all
+// empty cannot be critical (most of a lumen's bounding box).
+std::vector<char> OccupiedRows(const Volume<unsigned char>& mask) {
+  const std::size_t nx = mask.size[0], rows = mask.size[1] * mask.size[2];
+  std::vector<char> any(rows, 0);
+  for (std::size_t r = 0; r < rows; ++r) {
+    const unsigned char* p = &mask.voxels[r * nx];
+    for (std::size_t i = 0; i < nx && !any[r]; ++i) any[r] = p[i] != 0;
+  }
+  return any;
+}
+}  // namespace
+
 long CriticalCubes(const Volume<unsigned char>& mask) {
   const Grid g{static_cast<long>(mask.size[0]), static_cast<long>(mask.size[1]), static_cast<long>(mask.size[2]),
                mask.voxels.data()};
+  const std::vector<char> any = OccupiedRows(mask);
+  const auto occupied = [&](long j, long k) { return any[j + g.ny * k] || any[j + 1 + g.ny * k] || any[j + g.ny * (k + 1)] || any[j + 1 + g.ny * (k + 1)]; };
   long n = 0;
   for (long k = 0; k + 1 < g.nz; ++k)
-    for (long j = 0; j + 1 < g.ny; ++j)
+    for (long j = 0; j + 1 < g.ny; ++j) {
+      if (!occupied(j, k)) continue;
       for (long i = 0; i + 1 < g.nx; ++i)
         if (Critical(g.CubeBits(i, j, k))) ++n;
+    }
   return n;
 }
 
-long MakeWellComposed(Volume<unsigned char>& mask) {
+namespace {
+long Repair(Volume<unsigned char>& mask, long* forced);
+}  // namespace
+
+long MakeWellComposed(Volume<unsigned char>& mask) { return Repair(mask, nullptr); }
+
+long MakeWellComposedForcing(Volume<unsigned char>& mask, long* forced) {
+  long f = 0;
+  const long changed = Repair(mask, &f);
+  if (forced) *forced = f;
+  return changed;
+}
+
+namespace {
+long Repair(Volume<unsigned char>& mask, long* forced) {
   const long nx = static_cast<long>(mask.size[0]), ny = static_cast<long>(mask.size[1]), nz = static_cast<long>(mask.size[2]);
   const Grid g{nx, ny, nz, mask.voxels.data()};
-  // Each voxel changes at most once (added voxels are never removed, removed ones never added
-  // back), so the repair cannot cycle.
+  // Each voxel changes at most `limit` times, so the repair cannot cycle: first once (added
+  // voxels are never removed, removed ones never added back), then, for configurations that
+  // leaves, a few times more.
   std::vector<unsigned char> touched(mask.voxels.size(), 0);
+  unsigned char limit = 1;
+  std::vector<char> any = OccupiedRows(mask);
   const auto set = [&](long i, long j, long k, unsigned char v) {
     const std::size_t n = static_cast<std::size_t>(i + nx * (j + ny * k));
     mask.voxels[n] = v;
-    touched[n] = 1;
+    ++touched[n];
+    if (v) any[static_cast<std::size_t>(j + ny * k)] = 1;
   };
-  const auto free = [&](long i, long j, long k) { return !touched[static_cast<std::size_t>(i + nx * (j + ny * k))]; };
+  const auto occupied = [&](long j, long k) {
+    return any[j + ny * k] || any[j + 1 + ny * k] || any[j + ny * (k + 1)] || any[j + 1 + ny * (k + 1)];
+  };
+  const auto free = [&](long i, long j, long k) { return touched[static_cast<std::size_t>(i + nx * (j + ny * k))] < limit; };
   const auto simple = [&](long i, long j, long k) {
     std::uint32_t nb = 0;
     for (int dk = -1; dk <= 1; ++dk)
@@ -79,7 +119,8 @@ long MakeWellComposed(Volume<unsigned char>& mask) {
     long fixed = 0;
     stuck = 0;
     for (long k = 1; k + 2 < nz; ++k)
-      for (long j = 1; j + 2 < ny; ++j)
+      for (long j = 1; j + 2 < ny; ++j) {
+        if (!occupied(j, k)) continue;
         for (long i = 1; i + 2 < nx; ++i) {
           const unsigned bits = g.CubeBits(i, j, k);
           if (!Critical(bits)) continue;
@@ -96,6 +137,7 @@ long MakeWellComposed(Volume<unsigned char>& mask) {
           if (done) ++fixed;
           else ++stuck;
         }
+      }
     return fixed;
   };
   // Additions until none helps, then for the cubes no addition can fix one pass of removals,
@@ -103,19 +145,50 @@ long MakeWellComposed(Volume<unsigned char>& mask) {
   // same 5 voxels added and removed for 50 passes, 4 critical cubes left, and a stray 72-face
   // component in the contour).
   long changed = 0, stuck = 0;
-  for (int round = 0; round < 100; ++round) {
-    for (long added = 1; added > 0;) {
-      added = pass(1, stuck);
-      changed += added;
+  // Rounds stop once they no longer reduce what is left (a few configurations have no simple
+  // corner at all, and voxel-rough masks can hold many).
+  for (; limit <= 3; ++limit) {
+    long best = std::numeric_limits<long>::max(), idle = 0;
+    for (int round = 0; round < 12 && idle < 2; ++round) {
+      for (long added = 1; added > 0;) {
+        added = pass(1, stuck);
+        changed += added;
+      }
+      if (stuck == 0) return changed;
+      const long removed = pass(0, stuck);
+      changed += removed;
+      if (removed == 0) break;
+      idle = stuck < best ? 0 : idle + 1;
+      best = std::min(best, stuck);
     }
-    if (stuck == 0) return changed;
-    const long removed = pass(0, stuck);
-    changed += removed;
-    if (removed == 0) break;
+  }
+  if (forced) {
+    // What is left loses set voxels, topology or not (removals only: this ends).
+    for (long removed = 1; removed > 0;) {
+      removed = 0;
+      for (long k = 0; k + 1 < nz; ++k)
+        for (long j = 0; j + 1 < ny; ++j) {
+          if (!occupied(j, k)) continue;
+          for (long i = 0; i + 1 < nx; ++i) {
+            const unsigned bits = g.CubeBits(i, j, k);
+            if (!Critical(bits)) continue;
+            for (unsigned c = 0; c < 8; ++c)
+              if (bits >> c & 1) {
+                mask.voxels[static_cast<std::size_t>(i + (c & 1) + nx * (j + (c >> 1 & 1) + ny * (k + (c >> 2 & 1))))] = 0;
+                ++removed;
+                break;
+              }
+          }
+        }
+      *forced += removed;
+      changed += removed;
+    }
+    return changed;
   }
   const long left = CriticalCubes(mask);
   if (left) throw Error("voxel mask: " + std::to_string(left) + " voxel configurations cannot be made well-composed");
   return changed;
 }
+}  // namespace
 
 }  // namespace colonmap::segmentation

@@ -21,6 +21,11 @@ namespace colonmap::segmentation {
 // critical cubes are left. Deterministic.
 long MakeWellComposed(Volume<unsigned char>& mask);
 
+// The same without the Error: critical cubes no simple-point change can fix each lose a set
+// voxel anyway (which may change the topology: the caller simplifies it again, see
+// LumenTopology.h). Returns the voxels changed; *forced gets those removed that way.
+long MakeWellComposedForcing(Volume<unsigned char>& mask, long* forced);
+
 // Number of critical (not well-composed) 2x2x2 cubes of a 0/1 mask; 0 after MakeWellComposed.
 long CriticalCubes(const Volume<unsigned char>& mask);
 

@@ -1,38 +1,42 @@
 #pragma once
-// Label map (optionally with its CT) -> closed triangle surface of the colon lumen (issue 4,
-// DESIGN §2.1 stage 3).
+// Label map (optionally with its CT) -> closed genus-0 triangle surface of the colon lumen, in
+// one pass, manifold by construction (DESIGN 2.1 stage 3).
 //
-//  1. Lumen mask: voxels whose label equals options.labelValue, cropped to their bounding box
-//     plus a margin (the crop may extend past the image: outside counts as not lumen, so the
-//     surface is always closed).
-//  2. Sub-voxel contour (vtkFlyingEdges3D):
+//  1. Lumen mask: voxels whose label equals options.labelValue, on a crop of the label's grid
+//     around them (the crop may extend past the image: outside counts as not lumen), made one
+//     topological ball whatever tool made it (segmentation::MakeLumenBall: the largest
+//     component, cavities filled, handles cut at their thinnest places, well-composed).
+//  2. The field to contour:
 //     - with a CT: the iso-surface at options.isoValueHU (-480, half-way between air -1000 and
 //       wall 40, where the partial-volume model puts the true wall) of the CT restricted to a
-//       band of about options.bandVoxels around the label boundary: deeper inside the label
-//       the value is set to air, farther outside to wall, so other air (small bowel, outside
-//       air, lungs) cannot add surface and the surface cannot leave the band;
-//     - without: the 0.5 iso-surface of the mask smoothed by a Gaussian of
-//       options.labelSigmaVoxels.
-//  3. Largest connected component kept (the others are reported).
-//  4. Decimation to about options.targetFaces (vtkQuadricDecimation), removal of the rare
-//     dangling "fin" triangles it leaves on a non-manifold edge, then windowed-sinc smoothing
-//     (vtkWindowedSincPolyDataFilter: a low-pass filter that does not shrink folds).
+//       band of about options.bandVoxels around the ball's boundary (deeper inside set to air,
+//       farther outside to wall, so other air cannot add surface);
+//     - without: the ball smoothed by a Gaussian of options.labelSigmaVoxels (iso-value 0.5).
+//  3. Label only: its contour (vtkFlyingEdges3D; largest component) when that is one closed
+//     genus-0 surface (the smoothing rounds the cuts).
+//  4. Otherwise (always with a CT) the field's sign at every voxel centre made the ball's where
+//     it differs (the voxel moved just past the iso-value: the field still places the surface
+//     between voxel centres, the ball decides which side they are on), and its contour: on a
+//     well-composed sign pattern a closed manifold with the ball's topology (one pass with a CT;
+//     at most two without).
+//  4. Decimation to about options.targetFaces that keeps it a closed manifold of the same
+//     topology (ManifoldDecimation.h), then windowed-sinc smoothing (vertices only).
 //  5. To LPS (origin, spacing, direction of the label map), faces oriented so that normals
 //     point INTO the lumen: each triangle's vertices run counter-clockwise seen from inside the
 //     lumen (the closed surface has negative signed volume).
-//  If the CT surface is not closed genus 0 (partial volume can bridge two lumen parts closer
-//  than the band, where the label cut a handle), it is made again with the label deciding
-//  inside and outside at the voxel centres (the CT placing the surface between them), then
-//  from the label alone (notes). Pinch vertices left by the contour or the decimation are split.
 //  6. Point data "MeanCurvature" (mm^-1, MeanCurvature.h: positive where the wall bulges into
 //     the lumen, such as fold crests; about -1/(2r) on a plain tube of radius r).
-// Progress is reported per stage step; VTK filters are aborted when the host cancels.
+// What the topology step changed is in `changes` and `notes`. A result that is not a closed
+// genus-0 surface is an Error (never returned). Progress is reported per step; VTK filters are
+// aborted when the host cancels.
 #include "Core/Cancel.h"
 #include "Core/TriangleMesh.h"
 #include "Core/Volume.h"
+#include "Segmentation/LumenTopology.h"
 #include "Surface/MeshTopology.h"
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace colonmap::surface {
@@ -54,17 +58,16 @@ struct SurfaceOptions {
 
 struct SurfaceResult {
   TriangleMesh mesh;                   // faces oriented into the lumen, point data MeanCurvature
-  TopologyReport topology;             // of mesh
+  TopologyReport topology;             // of mesh: always closed genus 0
   long lumenVoxels = 0;                // voxels with the label value
-  long contourFaces = 0;               // faces of the raw iso-surface (all components)
-  std::vector<long> droppedComponents; // face counts of the components not kept, largest first
+  long contourFaces = 0;               // faces of the raw iso-surface
+  std::vector<long> droppedComponents; // voxel counts of the lumen components not kept, largest first
   bool usedCT = false;                 // the surface is the CT iso-surface (false: label only)
-  // What was retried and why: with a CT, a surface with topology problems is made again with
-  // the label deciding inside and outside at the voxel centres, and then from the label alone.
-  std::vector<std::string> notes;
-  // One line per problem found (non-manifold, handles, ...); empty when the surface is closed,
-  // genus 0, manifold and consistently oriented.
-  std::vector<std::string> problems;
+  segmentation::LumenTopology changes; // what the topology step changed (its `ball` empty)
+  std::size_t voxelsChanged = 0;       // voxels the topology step changed (dropped, filled, cut, well-composed)
+  int contourPasses = 0;               // 1; 2 when a label-only lumen's smoothed surface had to be remade
+  std::vector<std::string> notes;      // the same in words, one line each
+  std::vector<std::pair<std::string, double>> stepSeconds;  // topology, field, contour, decimation, smoothing, ...
 };
 
 // `ct` may be null (label-only path); when given it must be on the label map's grid.

@@ -67,13 +67,12 @@ void CheckGcaLandmarks() {
   EXPECT_EQ(wt.nonManifoldEdges, 0);
   EXPECT_EQ(wt.inconsistentEdges, 0);
   const analysis::GcaGenusZero g0 = analysis::GenusZeroGcaColon(w, 1.5, 200000);
-  std::printf("genus 0 (voxelised 1.5 mm, SegmentColonLumen, ReconstructSurface): %s; lumen %.0f ml, handle voxels "
-              "cut %zu, cavity voxels filled %zu; distance to the weld mean %.2f p99 %.2f max %.2f mm, weld to it "
+  std::printf("genus 0 (voxelised 1.5 mm, ReconstructSurface): %s; lumen %.0f ml, %ld handles cut (%zu voxels), "
+              "cavity voxels filled %zu; distance to the weld mean %.2f p99 %.2f max %.2f mm, weld to it "
               "mean %.2f p99 %.2f max %.2f mm; %.1f s\n",
-              surface::AnalyzeTopology(g0.colon.F).Summary().c_str(), g0.lumenMl, g0.handleVoxelsRemoved,
+              surface::AnalyzeTopology(g0.colon.F).Summary().c_str(), g0.lumenMl, g0.handles, g0.handleVoxelsRemoved,
               g0.cavityVoxelsFilled, g0.toWeldMean, g0.toWeldP99, g0.toWeldMax, g0.fromWeldMean, g0.fromWeldP99,
               g0.fromWeldMax, g0.seconds);
-  std::printf("contoured from %s\n", g0.contouredCT ? "the CT-like field" : "the label alone");
   for (const std::string& note : g0.notes) std::printf("  %s\n", note.c_str());
   ASSERT_TRUE(surface::AnalyzeTopology(g0.colon.F).IsClosedGenusZero());
   EXPECT_LT(g0.toWeldMean, 0.5);  // the genus-0 surface stays on the atlas surface (1.5 mm grid)

@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
 
 namespace {
 
@@ -165,6 +166,38 @@ json DescribeReal(const PhantomOptions& o, const realcolon::RealColonOptions& ro
   return j;
 }
 
+// The CTs (two stages) and the files of both phantoms in one order: the CTs, each posture's
+// files (writeScan, given the staged path of a file name), truth.json (made after the CTs, whose
+// grid it describes).
+using StagedFile = std::function<std::string(const std::string&)>;
+void WritePhantom(cli::ModuleContext& ctx, const std::string& out, const std::function<Volume<short>(Posture)>& makeCT,
+                  const std::function<void(Posture, const StagedFile&)>& writeScan,
+                  const std::function<json(const Volume<short>&)>& truth) {
+  ctx.progress.StartStage("Supine CT", "synthetic CT, supine");
+  const Volume<short> supineCT = makeCT(Posture::Supine);
+  ctx.progress.EndStage();
+  ctx.progress.StartStage("Prone CT", "synthetic CT, prone");
+  const Volume<short> proneCT = makeCT(Posture::Prone);
+  ctx.progress.EndStage();
+
+  ctx.progress.StartStage("Writing", "writing the phantom files");
+  const StagedFile file = [&](const std::string& name) {
+    return ctx.outputs.Stage((fs::path(out) / name).string(), "output " + name);
+  };
+  // Uncompressed: the CT noise makes gzip slow and barely useful, and an uncompressed write
+  // keeps Cancel prompt (ITK's writer cannot be interrupted).
+  io::WriteImage(supineCT, file("supine.nrrd"), "supine CT", io::Compression::None);
+  ctx.progress.Report(0.35);
+  io::WriteImage(proneCT, file("prone.nrrd"), "prone CT", io::Compression::None);
+  ctx.progress.Report(0.7);
+  for (const Posture posture : {Posture::Supine, Posture::Prone}) {
+    writeScan(posture, file);
+    ctx.progress.Report(posture == Posture::Supine ? 0.85 : 0.95);
+  }
+  io::WriteText(truth(supineCT).dump(2) + "\n", file("truth.json"), "truth.json");
+  ctx.progress.EndStage();
+}
+
 // The real-colon phantom (issue 17): same files as the tube's, no taeniae.
 void RunReal(cli::ModuleContext& ctx, const PhantomOptions& options, const std::string& source, const std::string& out) {
   realcolon::RealColonOptions ro;
@@ -177,32 +210,17 @@ void RunReal(cli::ModuleContext& ctx, const PhantomOptions& options, const std::
   realcolon::ColonSource src = realcolon::ReadColonSource(source);
   const realcolon::RealColonPair pair = realcolon::MakeRealColonPair(std::move(src), ro, ctx.progress);
   ctx.progress.EndStage();
-  ctx.progress.StartStage("Supine CT", "synthetic CT, supine");
-  const Volume<short> supineCT = realcolon::RealColonCT(pair, Posture::Supine, ro, ctx.progress);
-  ctx.progress.EndStage();
-  ctx.progress.StartStage("Prone CT", "synthetic CT, prone");
-  const Volume<short> proneCT = realcolon::RealColonCT(pair, Posture::Prone, ro, ctx.progress);
-  ctx.progress.EndStage();
-
-  ctx.progress.StartStage("Writing", "writing the phantom files");
-  const auto file = [&](const std::string& name) {
-    return ctx.outputs.Stage((fs::path(out) / name).string(), "output " + name);
-  };
-  io::WriteImage(supineCT, file("supine.nrrd"), "supine CT", io::Compression::None);
-  ctx.progress.Report(0.35);
-  io::WriteImage(proneCT, file("prone.nrrd"), "prone CT", io::Compression::None);
-  ctx.progress.Report(0.7);
-  for (const Posture posture : {Posture::Supine, Posture::Prone}) {
-    const std::string p = posture == Posture::Supine ? "supine" : "prone";
-    io::WriteMesh(posture == Posture::Supine ? pair.supine.wall : pair.prone.wall, file(p + "_truth.vtp"), p + " true wall");
-    io::WriteMarkups(realcolon::RealPolypMarkups(pair, posture), file(p + "_polyps.mrk.json"), p + " polyps");
-    io::WriteMarkups(realcolon::RealEvaluationMarkups(pair, posture), file(p + "_eval.mrk.json"), p + " evaluation points");
-    io::WriteMarkups(realcolon::RealCentrelineMarkups(pair, posture, 5.0), file(p + "_centerline.mrk.json"), p + " centerline");
-    io::WriteMarkups(realcolon::RealFlexureMarkups(pair, posture), file(p + "_flexures.mrk.json"), p + " flexures");
-    ctx.progress.Report(posture == Posture::Supine ? 0.85 : 0.95);
-  }
-  io::WriteText(DescribeReal(options, ro, pair, supineCT).dump(2) + "\n", file("truth.json"), "truth.json");
-  ctx.progress.EndStage();
+  WritePhantom(
+      ctx, out, [&](Posture posture) { return realcolon::RealColonCT(pair, posture, ro, ctx.progress); },
+      [&](Posture posture, const StagedFile& file) {
+        const std::string p = posture == Posture::Supine ? "supine" : "prone";
+        io::WriteMesh(posture == Posture::Supine ? pair.supine.wall : pair.prone.wall, file(p + "_truth.vtp"), p + " true wall");
+        io::WriteMarkups(realcolon::RealPolypMarkups(pair, posture), file(p + "_polyps.mrk.json"), p + " polyps");
+        io::WriteMarkups(realcolon::RealEvaluationMarkups(pair, posture), file(p + "_eval.mrk.json"), p + " evaluation points");
+        io::WriteMarkups(realcolon::RealCentrelineMarkups(pair, posture, 5.0), file(p + "_centerline.mrk.json"), p + " centerline");
+        io::WriteMarkups(realcolon::RealFlexureMarkups(pair, posture), file(p + "_flexures.mrk.json"), p + " flexures");
+      },
+      [&](const Volume<short>& supineCT) { return DescribeReal(options, ro, pair, supineCT); });
 
   ctx.SetReturn("colonLength", cli::FormatFixed(pair.material.length, 1));
   ctx.SetReturn("polypCount", std::to_string(pair.polyps.size()));
@@ -242,38 +260,21 @@ void Run(cli::ModuleContext& ctx) {
       SummarizeDilatation(FaceDilatation(supineWall, proneWall), FaceSegments(supineWall));
   ctx.progress.EndStage();
 
-  ctx.progress.StartStage("Supine CT", "synthetic CT, supine");
-  const Volume<short> supineCT = SynthesizeCT(supine, options, ctx.progress);
-  ctx.progress.EndStage();
-  ctx.progress.StartStage("Prone CT", "synthetic CT, prone");
-  const Volume<short> proneCT = SynthesizeCT(prone, options, ctx.progress);
-  ctx.progress.EndStage();
-
-  ctx.progress.StartStage("Writing", "writing the phantom files");
-  const auto file = [&](const std::string& name) {
-    return ctx.outputs.Stage((fs::path(out) / name).string(), "output " + name);
-  };
-  // Uncompressed: the CT noise makes gzip slow and barely useful, and an uncompressed write
-  // keeps Cancel prompt (ITK's writer cannot be interrupted).
-  io::WriteImage(supineCT, file("supine.nrrd"), "supine CT", io::Compression::None);
-  ctx.progress.Report(0.35);
-  io::WriteImage(proneCT, file("prone.nrrd"), "prone CT", io::Compression::None);
-  ctx.progress.Report(0.7);
-  for (const ScanGeometry* scan : {&supine, &prone}) {
-    const std::string p = scan == &supine ? "supine" : "prone";
-    io::WriteMesh(scan == &supine ? supineWall : proneWall, file(p + "_truth.vtp"), p + " true wall");
-    io::WriteMarkups(Polyps(*scan), file(p + "_polyps.mrk.json"), p + " polyps");
-    io::WriteMarkups(EvaluationPoints(*scan), file(p + "_eval.mrk.json"), p + " evaluation points");
-    io::WriteMarkups(ToMarkups(CenterlineSamples(*scan, 5.0)), file(p + "_centerline.mrk.json"), p + " centerline");
-    io::WriteMarkups(Flexures(*scan), file(p + "_flexures.mrk.json"), p + " flexures");
-    PolylineSet taeniae;
-    for (const CurveSamples& t : Taeniae(*scan, 2.0)) taeniae.lines.push_back({t.name, t.points, false});
-    io::WritePolylines(taeniae, file(p + "_taeniae.vtp"), p + " taeniae");
-    ctx.progress.Report(scan == &supine ? 0.85 : 0.95);
-  }
-  io::WriteText(Describe(options, anatomy, supine, prone, dilatation, supineCT).dump(2) + "\n",
-                file("truth.json"), "truth.json");
-  ctx.progress.EndStage();
+  WritePhantom(
+      ctx, out, [&](Posture posture) { return SynthesizeCT(posture == Posture::Supine ? supine : prone, options, ctx.progress); },
+      [&](Posture posture, const StagedFile& file) {
+        const ScanGeometry& scan = posture == Posture::Supine ? supine : prone;
+        const std::string p = posture == Posture::Supine ? "supine" : "prone";
+        io::WriteMesh(posture == Posture::Supine ? supineWall : proneWall, file(p + "_truth.vtp"), p + " true wall");
+        io::WriteMarkups(Polyps(scan), file(p + "_polyps.mrk.json"), p + " polyps");
+        io::WriteMarkups(EvaluationPoints(scan), file(p + "_eval.mrk.json"), p + " evaluation points");
+        io::WriteMarkups(ToMarkups(CenterlineSamples(scan, 5.0)), file(p + "_centerline.mrk.json"), p + " centerline");
+        io::WriteMarkups(Flexures(scan), file(p + "_flexures.mrk.json"), p + " flexures");
+        PolylineSet taeniae;
+        for (const CurveSamples& t : Taeniae(scan, 2.0)) taeniae.lines.push_back({t.name, t.points, false});
+        io::WritePolylines(taeniae, file(p + "_taeniae.vtp"), p + " taeniae");
+      },
+      [&](const Volume<short>& supineCT) { return Describe(options, anatomy, supine, prone, dilatation, supineCT); });
 
   ctx.SetReturn("colonLength", cli::FormatFixed(anatomy.length, 1));
   ctx.SetReturn("polypCount", std::to_string(anatomy.polyps.size()));

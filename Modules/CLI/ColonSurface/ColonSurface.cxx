@@ -55,21 +55,18 @@ void Run(cli::ModuleContext& ctx) {
   ctx.SetReturn("faces", std::to_string(t.faces));
   ctx.SetReturn("eulerCharacteristic", std::to_string(t.euler));
   ctx.SetReturn("droppedComponents", std::to_string(result.droppedComponents.size()));
-  std::string quality;
-  for (const std::string& p : result.problems) quality += (quality.empty() ? "" : "; ") + p;
-  // One word (hosts and scripts read `name = value`); the details are in the stdout note.
-  ctx.SetReturn("topology", result.problems.empty() ? "closed-genus-0" : "defective");
+  ctx.SetReturn("handlesCut", std::to_string(result.changes.handles));
+  ctx.SetReturn("voxelsChanged", std::to_string(result.voxelsChanged));
+  ctx.SetReturn("topology", "closed-genus-0");  // ReconstructSurface fails on anything else
 
-  std::string dropped;
-  for (long n : result.droppedComponents) dropped += (dropped.empty() ? "" : ", ") + std::to_string(n);
   ctx.progress.Note("ColonSurface: " + std::to_string(result.lumenVoxels) + " lumen voxels, " +
                     (result.usedCT ? "CT iso-value " + cli::FormatNumber(options.isoValueHU) + " HU" : "label only") +
                     ", contour " + std::to_string(result.contourFaces) + " faces; " + t.Summary());
   for (const std::string& n : result.notes) ctx.progress.Note("ColonSurface: " + n);
-  if (!result.droppedComponents.empty())
-    ctx.progress.Note("ColonSurface: dropped " + std::to_string(result.droppedComponents.size()) +
-                      " smaller component(s) of " + dropped + " faces");
-  if (!result.problems.empty()) ctx.progress.Note("ColonSurface: WARNING: topology problems: " + quality);
+  std::string times;
+  for (const auto& [step, seconds] : result.stepSeconds)
+    times += (times.empty() ? "" : ", ") + step + " " + cli::FormatFixed(seconds, 2) + " s";
+  ctx.progress.Note("ColonSurface: steps: " + times);
 }
 
 }  // namespace
