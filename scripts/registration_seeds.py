@@ -67,8 +67,27 @@ def parse_seeds(text):
     return seeds
 
 
-def prepare(cli, folder, seed, spacing, keep_volumes, real_colon=None, deformation=None):
+def landmarks_and_flattening(cli, folder):
+    """ColonLandmarks on both surfaces at once (flexures chosen jointly), then ColonFlattening."""
+    for sub in ("landmarks", "flattening"):
+        shutil.rmtree(os.path.join(folder, sub), ignore_errors=True)
+        os.makedirs(os.path.join(folder, sub), exist_ok=True)
+    surface = {scan: os.path.join(folder, "surface", f"{scan}_surface.vtp") for scan in ("supine", "prone")}
+    landmarks = {scan: os.path.join(folder, "landmarks", scan) for scan in ("supine", "prone")}
+    run(cli, "ColonLandmarks", [surface["supine"], landmarks["supine"], "--pairedSurface", surface["prone"],
+                                "--pairedOutputDirectory", landmarks["prone"], "--scanNames", "supine,prone"],
+        sys.stdout)
+    for scan in ("supine", "prone"):
+        run(cli, "ColonFlattening", [landmarks[scan], os.path.join(folder, "flattening", scan)], sys.stdout)
+
+
+def prepare(cli, folder, seed, spacing, keep_volumes, real_colon=None, deformation=None, redo_landmarks=False):
     """Makes CACHE/seed<N> (phantom truth, surfaces, landmarks, flattenings) when missing."""
+    surfaces = [os.path.join(folder, "surface", f"{s}_surface.vtp") for s in ("supine", "prone")]
+    if redo_landmarks and all(os.path.exists(f) for f in surfaces):
+        print(f"seed {seed}: landmarks and flattening again from the cached surfaces", flush=True)
+        landmarks_and_flattening(cli, folder)
+        return
     if all(os.path.exists(os.path.join(folder, "flattening", s, "flattening.json")) for s in ("supine", "prone")):
         return
     print(f"seed {seed}: making the pair in {folder}", flush=True)
@@ -80,7 +99,7 @@ def prepare(cli, folder, seed, spacing, keep_volumes, real_colon=None, deformati
         args += ["--deformation", str(deformation)]
     run(cli, "ColonPhantom", args, sys.stdout)
     work = os.path.join(folder, "work")
-    for sub in ("work", "surface", "landmarks", "flattening"):
+    for sub in ("work", "surface"):
         os.makedirs(os.path.join(folder, sub), exist_ok=True)
     for scan in ("supine", "prone"):
         ct = os.path.join(phantom, f"{scan}.nrrd")
@@ -90,12 +109,10 @@ def prepare(cli, folder, seed, spacing, keep_volumes, real_colon=None, deformati
         run(cli, "ColonCleansing", [ct, cleansed], sys.stdout)
         run(cli, "ColonSegmentation", [cleansed, lumen], sys.stdout)
         run(cli, "ColonSurface", [lumen, surface, "--referenceCT", cleansed], sys.stdout)
-        landmarks = os.path.join(folder, "landmarks", scan)
-        run(cli, "ColonLandmarks", [surface, landmarks], sys.stdout)
-        run(cli, "ColonFlattening", [landmarks, os.path.join(folder, "flattening", scan)], sys.stdout)
         if not keep_volumes:
             for f in (cleansed, lumen):
                 os.remove(f)
+    landmarks_and_flattening(cli, folder)
     if not keep_volumes:
         shutil.rmtree(work, ignore_errors=True)
         for scan in ("supine", "prone"):
@@ -217,6 +234,8 @@ def main():
     p.add_argument("--keep-volumes", action="store_true")
     p.add_argument("--real-colon", default=None, help="a real colon folder for ColonPhantom --realColon")
     p.add_argument("--deformation", type=float, default=None)
+    p.add_argument("--redo-landmarks", action="store_true",
+                   help="recompute landmarks and flattening from the cached surfaces (after a landmark change)")
     a = p.parse_args()
     seeds = parse_seeds(a.seeds)
     methods = a.methods.split(",")
@@ -226,7 +245,7 @@ def main():
         folder = os.path.join(os.path.abspath(a.cache), f"seed{seed}")
         os.makedirs(folder, exist_ok=True)
         try:
-            prepare(a.cli_dir, folder, seed, a.spacing, a.keep_volumes, a.real_colon, a.deformation)
+            prepare(a.cli_dir, folder, seed, a.spacing, a.keep_volumes, a.real_colon, a.deformation, a.redo_landmarks)
         except RuntimeError as e:
             print(f"seed {seed}: FAILED: {e}", flush=True)
             report["failed"][seed] = str(e)

@@ -2,6 +2,8 @@
 
 #include "Analysis/MidlineProjection.h"
 #include "Core/Error.h"
+#include "Core/RunConcurrently.h"
+#include "Landmarks/LevelCentreline.h"
 #include "Surface/MeshTopology.h"
 #include "Surface/SignedVolume.h"
 
@@ -34,17 +36,28 @@ std::string Fixed(double v, int digits) {
   return buf;
 }
 
+// The point at arc length `a` along P (arcs: P's arc lengths).
+Eigen::Vector3d PointAtArc(const Eigen::MatrixXd& P, const Eigen::VectorXd& arcs, double a) {
+  const Eigen::Index n = P.rows();
+  const Eigen::Index i = std::clamp<Eigen::Index>(std::upper_bound(arcs.data(), arcs.data() + n, a) - arcs.data() - 1, 0, n - 2);
+  const double len = arcs(i + 1) - arcs(i), t = len > 0 ? std::clamp((a - arcs(i)) / len, 0.0, 1.0) : 0.0;
+  return ((1 - t) * P.row(i) + t * P.row(i + 1)).transpose();
+}
+
 // The flexure rules run on the level-set curve they were tuned on (its corner cutting is part of
 // what they expect); each flexure is then carried to the nearest point of the centred curve.
-Flexures FlexuresOnCentred(const Centerline& c, const FlexureOptions& options) {
-  const Eigen::VectorXd arc = analysis::ArcLength(c.uncentred);
-  Flexures f = FindFlexures(c.uncentred, arc, options);
+Flexures FlexuresOnCentred(const ColonAxis& axis, const std::array<double, 4>& ruleArcs) {
+  const Centerline& c = axis.centerline;
+  const Eigen::MatrixXd& rule = axis.RuleCurve();
+  const Eigen::VectorXd ruleArc = analysis::ArcLength(rule);
+  Flexures f;
   analysis::ProjectionOptions po;
   po.excludeBeyondEnds = false;
   for (int k = 0; k < 4; ++k) {
-    const analysis::MidlineProjection p = analysis::ProjectToMidline(f.position[k].transpose(), c.points, po);
-    f.arc[k] = p.arc(0);
-    const Eigen::Index i = std::clamp<Eigen::Index>(p.segment(0), 0, c.points.rows() - 2);
+    const Eigen::Vector3d p = PointAtArc(rule, ruleArc, ruleArcs[k]);
+    const analysis::MidlineProjection proj = analysis::ProjectToMidline(p.transpose(), c.points, po);
+    f.arc[k] = proj.arc(0);
+    const Eigen::Index i = std::clamp<Eigen::Index>(proj.segment(0), 0, c.points.rows() - 2);
     const double len = c.arc(i + 1) - c.arc(i), t = len > 0 ? std::clamp((f.arc[k] - c.arc(i)) / len, 0.0, 1.0) : 0.0;
     f.sample[k] = static_cast<int>(t < 0.5 ? i : i + 1);
     f.position[k] = ((1 - t) * c.points.row(i) + t * c.points.row(i + 1)).transpose();
@@ -52,17 +65,48 @@ Flexures FlexuresOnCentred(const Centerline& c, const FlexureOptions& options) {
   return f;
 }
 
+// Mean distance to the nearest surface vertex of every 5th sample of a curve (a clearance to
+// the wall, within half an edge).
+double MeanClearance(const Eigen::MatrixXd& V, const Eigen::MatrixXd& curve) {
+  double sum = 0.0;
+  int n = 0;
+  for (Eigen::Index i = 0; i < curve.rows(); i += 5, ++n)
+    sum += std::sqrt((V.rowwise() - curve.row(i)).rowwise().squaredNorm().minCoeff());
+  return n ? sum / n : 0.0;
+}
+
+// The centreline as the smoothed centroids of the along-colon function's level sets (from the
+// anal end, f = 0), 1 mm apart; the geodesic curve `c` becomes `uncentred` (the flexure rules'
+// curve). The tips (f = 0 and 1 on their discs) are not loops: the levels start just inside.
+Centerline LevelSetCenterline(const TriangleMesh& closed, const Eigen::VectorXd& f, Centerline c,
+                              const LandmarkOptions& o) {
+  const int n = std::max(100, o.centreLevels);
+  const Eigen::VectorXd levels = Eigen::VectorXd::LinSpaced(n, 0.5 / n, 1.0 - 0.5 / n);
+  const LevelCentreline lc = ComputeLevelCentreline(closed.V, closed.F, f, levels, o.levelSmoothingMm);
+  Centerline out;
+  out.uncentred = c.points;
+  out.points = ResamplePolyline(lc.points, o.centerline.outputStepMm);
+  out.arc = analysis::ArcLength(out.points);
+  out.endFirst = c.endFirst;
+  out.endSecond = c.endSecond;
+  out.clearanceBeforeMm = MeanClearance(closed.V, c.points);
+  out.clearanceMm = MeanClearance(closed.V, out.points);
+  return out;
+}
+
+using Clock = std::chrono::steady_clock;
+// Appends (name, seconds since t0) to times and restarts t0.
+void Lap(std::vector<std::pair<std::string, double>>& times, Clock::time_point& t0, const char* name) {
+  const auto t = Clock::now();
+  times.emplace_back(name, std::chrono::duration<double>(t - t0).count());
+  t0 = t;
+}
+
 }  // namespace
 
-LandmarkResult FindLandmarks(TriangleMesh closed, const LandmarkOptions& o, ProgressSink& progress) {
-  LandmarkResult r;
-  using Clock = std::chrono::steady_clock;
+ColonAxis FindColonAxis(TriangleMesh closed, const LandmarkOptions& o, ProgressSink& progress) {
+  ColonAxis x;
   auto t0 = Clock::now();
-  const auto lap = [&](const char* name) {
-    const auto t = Clock::now();
-    r.times.emplace_back(name, std::chrono::duration<double>(t - t0).count());
-    t0 = t;
-  };
   const surface::TopologyReport topo = surface::AnalyzeTopology(closed.F);
   if (!topo.IsClosedGenusZero())
     throw Error("not a closed colon surface (one closed, manifold, consistently oriented genus-0 component "
@@ -73,22 +117,44 @@ LandmarkResult FindLandmarks(TriangleMesh closed, const LandmarkOptions& o, Prog
   // Normals into the lumen: a closed surface oriented so has negative signed volume.
   if (surface::SignedVolume(closed.V, closed.F) > 0) {
     closed.F.col(1).swap(closed.F.col(2));
-    r.flippedOrientation = true;
+    x.flippedOrientation = true;
   }
-  lap("check");
-
-  SubProgress pc(progress, 0.0, 0.4);
-  Centerline c = ComputeCenterline(closed.V, closed.F, o.centerline, pc);
+  Lap(x.times, t0, "check");
+  SubProgress pc(progress, 0.0, 0.7);
+  CenterlineOptions co = o.centerline;
+  if (o.levelSetCentreline) co.centre = false;  // replaced below
+  Centerline c = ComputeCenterline(closed.V, closed.F, co, pc);
   // Orient from the anal end: the cecum end has the smaller x (patient right).
   if (c.points(0, 0) < c.points(c.points.rows() - 1, 0)) c = Reversed(c);
-  r.centerline = c;
-  lap("centerline");
-  r.flexures = c.uncentred.rows() ? FlexuresOnCentred(c, o.flexures) : FindFlexures(c.points, c.arc, o.flexures);
-  progress.Report(0.45);
-  lap("flexures");
-  SubProgress ps(progress, 0.45, 0.7);
+  Lap(x.times, t0, "centerline");
+  x.alongColon = AlongColonFunction(closed.V, closed.F, c.endFirst, c.endSecond, o.endDiscMm);
+  progress.Report(0.9);
+  Lap(x.times, t0, "along-colon function");
+  if (o.levelSetCentreline) {
+    c = LevelSetCenterline(closed, x.alongColon, std::move(c), o);
+    Lap(x.times, t0, "level-set centreline");
+  }
+  x.centerline = std::move(c);
+  progress.Report(0.95);
+  const Eigen::MatrixXd& rule = x.RuleCurve();
+  x.candidates = FindFlexureCandidates(rule, analysis::ArcLength(rule), o.flexures);
+  progress.Report(1.0);
+  Lap(x.times, t0, "flexures");
+  x.closed = std::move(closed);
+  return x;
+}
+
+LandmarkResult FinishLandmarks(ColonAxis x, const std::array<double, 4>& ruleArcs, const LandmarkOptions& o,
+                               ProgressSink& progress) {
+  LandmarkResult r;
+  r.times = x.times;
+  auto t0 = Clock::now();
+  r.flippedOrientation = x.flippedOrientation;
+  r.flexures = FlexuresOnCentred(x, ruleArcs);
+  const Centerline& c = x.centerline;
+  SubProgress ps(progress, 0.0, 0.5);
   try {
-    r.segments = SplitColon(closed, c.points, c.arc, r.flexures.arc, o.segments, ps);
+    r.segments = SplitColon(x.closed, x.alongColon, c.points, c.arc, r.flexures.arc, o.segments, ps);
   } catch (const Error& e) {
     std::string found;
     for (int k = 0; k < 4; ++k)
@@ -96,10 +162,65 @@ LandmarkResult FindLandmarks(TriangleMesh closed, const LandmarkOptions& o, Prog
     throw Error(std::string(e.what()) + " (flexures at " + found + " mm of a " + Fixed(c.Length(), 0) +
                 " mm centreline)");
   }
-  lap("segments");
-  SubProgress pt(progress, 0.7, 1.0);
+  Lap(r.times, t0, "segments");
+  SubProgress pt(progress, 0.5, 1.0);
   r.taeniae = FindTaeniae(r.segments, c.points, o.taeniae, pt);
-  lap("taeniae");
+  Lap(r.times, t0, "taeniae");
+  r.centerline = std::move(x.centerline);
+  r.alongColon = std::move(x.alongColon);
+  return r;
+}
+
+LandmarkResult FindLandmarks(TriangleMesh closed, const LandmarkOptions& o, ProgressSink& progress) {
+  SubProgress pa(progress, 0.0, 0.45), pf(progress, 0.45, 1.0);
+  ColonAxis x = FindColonAxis(std::move(closed), o, pa);
+  const std::array<double, 4> arcs = x.candidates.byDefault.arc;
+  return FinishLandmarks(std::move(x), arcs, o, pf);
+}
+
+std::array<LandmarkResult, 2> FindLandmarksForPair(TriangleMesh a, TriangleMesh b, const std::array<std::string, 2>& names,
+                                                  const LandmarkOptions& o, ProgressSink& progress) {
+  // The two scans' own work runs concurrently (RunConcurrently); errors name the scan.
+  std::array<ColonAxis, 2> x;
+  TriangleMesh* in[2] = {&a, &b};
+  const auto axis = [&](int k, ProgressSink& p) {
+    try {
+      x[k] = FindColonAxis(std::move(*in[k]), o, p);
+    } catch (const Error& e) {
+      throw Error(names[k] + " surface: " + e.what());
+    }
+  };
+  SubProgress first(progress, 0.0, 0.6);
+  RunConcurrently([&](ProgressSink& p) { axis(0, p); }, [&](ProgressSink& p) { axis(1, p); }, first);
+  auto t0 = Clock::now();
+  const Eigen::MatrixXd &ra = x[0].RuleCurve(), &rb = x[1].RuleCurve();
+  const double la = analysis::ArcLength(ra)(ra.rows() - 1), lb = analysis::ArcLength(rb)(rb.rows() - 1);
+  const CentrelineAlignment align(ra, rb, o.alignment);
+  const JointFlexureChoice choice = ChooseFlexuresJointly(x[0].candidates, x[1].candidates, la, lb, align, names, o.joint);
+  std::array<JointNote, 2> notes;
+  for (int k = 0; k < 2; ++k) {
+    notes[k].pairedWith = names[1 - k];
+    notes[k].consistent = choice.consistent;
+    notes[k].fallback = choice.fallback;
+    notes[k].how = choice.how;
+    notes[k].defaultDisagreementMm = choice.defaultDisagreementMm;
+    notes[k].alignmentCost = align.meanCost;
+    notes[k].ownRuleArc = FlexuresOnCentred(x[k], x[k].candidates.byDefault.arc).arc;
+  }
+  std::vector<std::pair<std::string, double>> jointTime;
+  Lap(jointTime, t0, "joint flexures");
+  std::array<LandmarkResult, 2> r;
+  const auto finish = [&](int k, ProgressSink& p) {
+    x[k].times.push_back(jointTime.front());
+    try {
+      r[k] = FinishLandmarks(std::move(x[k]), choice.arc[k], o, p);
+    } catch (const Error& e) {
+      throw Error(names[k] + " surface: " + e.what());
+    }
+    r[k].joint = notes[k];
+  };
+  SubProgress second(progress, 0.6, 1.0);
+  RunConcurrently([&](ProgressSink& p) { finish(0, p); }, [&](ProgressSink& p) { finish(1, p); }, second);
   return r;
 }
 
@@ -215,6 +336,19 @@ std::string SummaryJson(const LandmarkResult& r, bool withTimes) {
   j["centerlineClearanceMm"] = {{"levelSetCurve", r.centerline.clearanceBeforeMm}, {"centred", r.centerline.clearanceMm}};
   j["flippedInputOrientation"] = r.flippedOrientation;
   j["relabelledFaces"] = r.segments.relabelledFaces;
+  if (r.joint) {
+    const JointNote& n = *r.joint;
+    nlohmann::ordered_json jn;
+    jn["pairedWith"] = n.pairedWith;
+    jn["consistent"] = n.consistent;
+    jn["fallback"] = n.fallback;
+    jn["alignmentCost"] = n.alignmentCost;
+    for (int k = 0; k < 4; ++k)
+      jn["flexures"][Flexures::Names()[k]] = {{"choice", n.how[k]},
+                                              {"ownRulesArcLengthMm", n.ownRuleArc[k]},
+                                              {"ownRulesDisagreementMm", n.defaultDisagreementMm[k]}};
+    j["jointChoice"] = jn;
+  }
   j["taeniaMethod"] = "fold-interruption phase tracking (mean curvature > 0 as folds); TO is the cut";
   j["times"] = nlohmann::ordered_json::object();
   if (withTimes)

@@ -22,6 +22,58 @@ Eigen::VectorXd NearestArcLength(const Eigen::MatrixXd& P, const Eigen::MatrixXd
   return out;
 }
 
+Eigen::VectorXd AlongColonArcLength(const Eigen::VectorXd& f, const Eigen::VectorXd& nearestArc, double length, int bins) {
+  const Eigen::Index n = f.size();
+  if (nearestArc.size() != n || n == 0) throw Error("along-colon arc length: one value per vertex needed");
+  std::vector<Eigen::Index> order(static_cast<std::size_t>(n));
+  std::iota(order.begin(), order.end(), Eigen::Index{0});
+  std::stable_sort(order.begin(), order.end(), [&](Eigen::Index a, Eigen::Index b) { return f(a) < f(b); });
+  const int k = static_cast<int>(std::clamp<Eigen::Index>(bins, 1, n));
+  // Per bin: median f and median arc; then pool adjacent violators (weights = bin sizes).
+  std::vector<double> bf, ba, bw;
+  for (int b = 0; b < k; ++b) {
+    const Eigen::Index lo = n * b / k, hi = n * (b + 1) / k;
+    if (hi <= lo) continue;
+    std::vector<double> fs, as;
+    for (Eigen::Index i = lo; i < hi; ++i) fs.push_back(f(order[i])), as.push_back(nearestArc(order[i]));
+    const auto mid = [](std::vector<double>& v) {
+      std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+      return v[v.size() / 2];
+    };
+    bf.push_back(mid(fs)), ba.push_back(mid(as)), bw.push_back(static_cast<double>(hi - lo));
+  }
+  struct Block { double value, weight; std::size_t count; };
+  std::vector<Block> blocks;
+  for (std::size_t i = 0; i < ba.size(); ++i) {
+    blocks.push_back({ba[i], bw[i], 1});
+    while (blocks.size() > 1 && blocks[blocks.size() - 2].value > blocks.back().value) {
+      const Block top = blocks.back();
+      blocks.pop_back();
+      Block& prev = blocks.back();
+      prev.value = (prev.value * prev.weight + top.value * top.weight) / (prev.weight + top.weight);
+      prev.weight += top.weight;
+      prev.count += top.count;
+    }
+  }
+  std::vector<double> fitted;
+  for (const Block& b : blocks) fitted.insert(fitted.end(), b.count, b.value);
+  // The tips of the tube are the ends of the centreline: pin the first and last knots there, so
+  // that the end caps (capMm inside the ends) are never empty.
+  fitted.front() = std::min(fitted.front(), 0.0);
+  fitted.back() = std::max(fitted.back(), length);
+  Eigen::VectorXd out(n);
+  for (Eigen::Index v = 0; v < n; ++v) {
+    const double x = f(v);
+    const auto it = std::upper_bound(bf.begin(), bf.end(), x);
+    if (it == bf.begin()) { out(v) = fitted.front(); continue; }
+    if (it == bf.end()) { out(v) = fitted.back(); continue; }
+    const std::size_t j = static_cast<std::size_t>(it - bf.begin());
+    const double dx = bf[j] - bf[j - 1], t = dx > 0 ? (x - bf[j - 1]) / dx : 0.0;
+    out(v) = fitted[j - 1] + t * (fitted[j] - fitted[j - 1]);
+  }
+  return out;
+}
+
 namespace {
 
 constexpr int kBands = 7;  // anal cap, R, S, D, T, A, cecal cap
@@ -212,15 +264,17 @@ Eigen::VectorXd BandArcLength(const Eigen::MatrixXd& V, const std::vector<int>& 
 
 }  // namespace
 
-ColonSegments SplitColon(const TriangleMesh& closed, const Eigen::MatrixXd& centerline, const Eigen::VectorXd& arc,
+ColonSegments SplitColon(const TriangleMesh& closed, const Eigen::VectorXd& alongColon,
+                         const Eigen::MatrixXd& centerline, const Eigen::VectorXd& arc,
                          const std::array<double, 4>& flexureArc, const SegmentOptions& o, ProgressSink& progress) {
   const Eigen::MatrixXd& V = closed.V;
   const Eigen::MatrixXi& F = closed.F;
   const Eigen::Index m = F.rows();
   const double L = arc(arc.size() - 1);
-  Eigen::MatrixXd centroids(m, 3);
-  for (Eigen::Index f = 0; f < m; ++f) centroids.row(f) = (V.row(F(f, 0)) + V.row(F(f, 1)) + V.row(F(f, 2))) / 3.0;
-  const Eigen::VectorXd faceArc = NearestArcLength(centroids, centerline);
+  if (alongColon.size() != V.rows()) throw Error("split colon: the along-colon function needs one value per vertex");
+  const Eigen::VectorXd vertexArc = AlongColonArcLength(alongColon, NearestArcLength(V, centerline), L);
+  Eigen::VectorXd faceArc(m);
+  for (Eigen::Index f = 0; f < m; ++f) faceArc(f) = (vertexArc(F(f, 0)) + vertexArc(F(f, 1)) + vertexArc(F(f, 2))) / 3.0;
   progress.Report(0.3);
   // Cuts in increasing arc: anal cap | R | S | D | T | A | cecal cap.
   const std::array<double, 6> cuts{o.capMm, flexureArc[3], flexureArc[2], flexureArc[1], flexureArc[0], L - o.capMm};

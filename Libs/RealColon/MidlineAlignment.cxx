@@ -1,12 +1,11 @@
 #include "RealColon/MidlineAlignment.h"
 
+#include "Analysis/DynamicTimeWarping.h"
 #include "Analysis/MidlineProjection.h"
 #include "Core/Error.h"
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
-#include <vector>
 
 namespace colonmap::realcolon {
 namespace {
@@ -37,40 +36,12 @@ Eigen::VectorXd AlignAlongCurve(const Eigen::MatrixXd& reference, const Eigen::M
   if (reference.rows() < 2 || curve.rows() < 2) throw Error("midline alignment: each polyline needs two points");
   Eigen::VectorXd ra, ca;
   const Eigen::MatrixXd R = Resample(reference, stepMm, ra), C = Resample(curve, stepMm, ca);
-  const Eigen::Index m = R.rows(), n = C.rows();
-  // Accumulated cost, row by row; the step taken into each cell (0 diagonal, 1 up, 2 left).
-  std::vector<unsigned char> step(static_cast<std::size_t>(m * n));
-  std::vector<double> prev(static_cast<std::size_t>(n)), cur(static_cast<std::size_t>(n));
-  const double inf = std::numeric_limits<double>::infinity();
-  for (Eigen::Index i = 0; i < m; ++i) {
-    for (Eigen::Index j = 0; j < n; ++j) {
-      const double d = (R.row(i) - C.row(j)).norm();
-      double best = inf;
-      unsigned char how = 0;
-      if (i == 0 && j == 0) best = 0.0;
-      if (i > 0 && j > 0 && prev[j - 1] < best) best = prev[j - 1], how = 0;
-      if (i > 0 && prev[j] < best) best = prev[j], how = 1;
-      if (j > 0 && cur[j - 1] < best) best = cur[j - 1], how = 2;
-      cur[j] = best + d;
-      step[static_cast<std::size_t>(i * n + j)] = how;
-    }
-    std::swap(prev, cur);
-  }
-  // Back-track: for each reference sample, the mean matched curve arc.
-  std::vector<double> sum(static_cast<std::size_t>(m), 0.0);
-  std::vector<int> count(static_cast<std::size_t>(m), 0);
-  Eigen::Index i = m - 1, j = n - 1;
-  while (true) {
-    sum[i] += ca(j);
-    ++count[i];
-    if (i == 0 && j == 0) break;
-    const unsigned char how = step[static_cast<std::size_t>(i * n + j)];
-    if (how == 0) --i, --j;
-    else if (how == 1) --i;
-    else --j;
-  }
+  const Eigen::Index m = R.rows();
+  // Point distance as the cost: the two curves run through the same tube.
+  const analysis::Warping w = analysis::WarpSequences(R, C);
   Eigen::VectorXd matched(m);
-  for (Eigen::Index k = 0; k < m; ++k) matched(k) = sum[k] / count[k];
+  const double curveStep = ca(ca.size() - 1) / static_cast<double>(ca.size() - 1);
+  for (Eigen::Index k = 0; k < m; ++k) matched(k) = w.matchedInB(k) * curveStep;
   Eigen::VectorXd out(referenceArcs.size());
   for (Eigen::Index q = 0; q < referenceArcs.size(); ++q) {
     const double s = std::clamp(referenceArcs(q), 0.0, ra(m - 1));

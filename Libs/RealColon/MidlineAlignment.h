@@ -2,8 +2,8 @@
 // Carrying points given along one midline (an atlas's, with its landmarks) onto another curve
 // through the same tube (our level-set centreline), in order: a nearest-point projection can
 // jump to another loop where the colon touches itself or bends back, an ordered alignment
-// cannot. Dynamic time warping of the two polylines resampled at stepMm (cost: point distance;
-// steps (1,0), (0,1), (1,1)), libigl style.
+// cannot. Dynamic time warping (Analysis/DynamicTimeWarping.h) of the two polylines resampled at
+// stepMm, cost the point distance, libigl style.
 #include <Eigen/Core>
 
 namespace colonmap::realcolon {

@@ -2,10 +2,9 @@
 
 #include "Analysis/MidlineProjection.h"
 #include "Core/Error.h"
-#include "Flattening/HarmonicFunction.h"
-#include "Flattening/IntrinsicDelaunay.h"
+#include "Landmarks/AlongColonFunction.h"
 #include "Landmarks/MeshGraph.h"
-#include "RealColon/IsoLines.h"
+#include "Landmarks/IsoLines.h"
 #include "Surface/MeshTopology.h"
 
 #include <Eigen/Geometry>
@@ -39,58 +38,6 @@ int Farthest(const std::vector<double>& d) {
   return best;
 }
 
-// Harmonic f on a closed mesh with f = 0 on `zero` and 1 on `one`: intrinsic Delaunay
-// cotangent Laplacian, negative weights raised (maximum principle).
-Eigen::VectorXd Harmonic(const TriangleMesh& m, const std::vector<int>& zero, const std::vector<int>& one) {
-  const flattening::IntrinsicTriangulation idt = flattening::IntrinsicDelaunay(m.V, m.F, {}, false);
-  const Eigen::MatrixXd w = flattening::IntrinsicCornerWeights(idt.F, idt.lengths, true);
-  const Eigen::SparseMatrix<double> L = flattening::CotangentLaplacianFromWeights(idt.F, w, m.V.rows());
-  std::vector<int> fixed = zero;
-  fixed.insert(fixed.end(), one.begin(), one.end());
-  Eigen::VectorXd values(static_cast<Eigen::Index>(fixed.size()));
-  for (std::size_t i = 0; i < fixed.size(); ++i) values(static_cast<Eigen::Index>(i)) = i < zero.size() ? 0.0 : 1.0;
-  return flattening::HarmonicFunction(L, fixed, values);
-}
-
-// Centroid (length weighted) of a closed vertex loop.
-Eigen::RowVector3d LoopCentroid(const Eigen::MatrixXd& V, const std::vector<int>& loop) {
-  Eigen::RowVector3d sum = Eigen::RowVector3d::Zero();
-  double total = 0.0;
-  for (std::size_t i = 0; i < loop.size(); ++i) {
-    const Eigen::RowVector3d a = V.row(loop[i]), b = V.row(loop[(i + 1) % loop.size()]);
-    const double len = (b - a).norm();
-    sum += len * 0.5 * (a + b);
-    total += len;
-  }
-  return total > 0 ? Eigen::RowVector3d(sum / total) : Eigen::RowVector3d(V.row(loop.front()));
-}
-
-// Gaussian smoothing of a sampled curve in its own arc length; the end points stay.
-Eigen::MatrixXd SmoothAlongArc(const Eigen::MatrixXd& P, double sigma) {
-  const Eigen::VectorXd a = analysis::ArcLength(P);
-  const Eigen::Index n = P.rows();
-  Eigen::MatrixXd out = P;
-  if (sigma <= 0 || n < 3) return out;
-  Eigen::Index lo = 0, hi = 0;
-  for (Eigen::Index i = 1; i + 1 < n; ++i) {
-    // Window shrunk symmetrically near the ends so that the curve keeps its end points.
-    const double reach = std::min({3.0 * sigma, a(i) - a(0), a(n - 1) - a(i)});
-    while (a(lo) < a(i) - reach) ++lo;
-    while (hi + 1 < n && a(hi + 1) <= a(i) + reach) ++hi;
-    Eigen::RowVector3d sum = Eigen::RowVector3d::Zero();
-    double wsum = 0.0;
-    for (Eigen::Index j = lo; j <= hi; ++j) {
-      const double d = a(j) - a(i);
-      if (std::fabs(d) > reach) continue;
-      const double w = std::exp(-0.5 * d * d / (sigma * sigma));
-      sum += w * P.row(j);
-      wsum += w;
-    }
-    out.row(i) = sum / wsum;
-  }
-  return out;
-}
-
 Eigen::Index SegmentOf(const Eigen::VectorXd& knots, double x) {
   const auto it = std::upper_bound(knots.data(), knots.data() + knots.size(), x);
   Eigen::Index i = (it - knots.data()) - 1;
@@ -105,47 +52,6 @@ double Interpolate(const Eigen::VectorXd& x, const Eigen::VectorXd& y, double v)
 }
 
 }  // namespace
-
-LevelCentreline ComputeLevelCentreline(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const Eigen::VectorXd& f,
-                                       const Eigen::VectorXd& levels, double smoothingMm, const Eigen::Vector3d& down) {
-  const Eigen::Index n = levels.size();
-  const LevelSummary sum = SummarizeLevels(V, F, f, levels, down);
-  LevelCentreline out;
-  Eigen::MatrixXd raw = sum.centroid;
-  out.radius = sum.meanRadius;
-  out.maxRadius = sum.maxRadius;
-  out.lowest = sum.lowest;
-  // Levels 0 and 1 are the boundary loops, which no face crosses.
-  for (const std::vector<int>& loop : surface::BoundaryLoops(F)) {
-    const double value = f(loop.front());
-    for (Eigen::Index i = 0; i < n; ++i) {
-      if (std::fabs(levels(i) - value) > 1e-9) continue;
-      raw.row(i) = LoopCentroid(V, loop);
-      double r = 0.0, deepest = -std::numeric_limits<double>::infinity();
-      out.maxRadius(i) = 0.0;
-      for (int v : loop) {
-        r += (V.row(v) - raw.row(i)).norm();
-        out.maxRadius(i) = std::max(out.maxRadius(i), (V.row(v) - raw.row(i)).norm());
-        if (V.row(v).dot(down) > deepest) deepest = V.row(v).dot(down), out.lowest.row(i) = V.row(v);
-      }
-      out.radius(i) = r / static_cast<double>(loop.size());
-    }
-  }
-  // Levels that met no face (none expected on a fine mesh) take a neighbour's values.
-  for (Eigen::Index i = 0; i < n; ++i)
-    if (!std::isfinite(raw(i, 0))) {
-      Eigen::Index j = i;
-      while (j < n && !std::isfinite(raw(j, 0))) ++j;
-      const Eigen::Index from = j < n ? j : i - 1;
-      if (from < 0) throw Error("colon surface: no level set of the along-colon coordinate meets the surface");
-      raw.row(i) = raw.row(from);
-      out.radius(i) = out.radius(from);
-      out.maxRadius(i) = out.maxRadius(from);
-      out.lowest.row(i) = out.lowest.row(from);
-    }
-  out.points = SmoothAlongArc(raw, smoothingMm);
-  return out;
-}
 
 double TubeMaterial::SOfF(double value) const { return Interpolate(levelF, levelS, value); }
 double TubeMaterial::FOfS(double value) const { return Interpolate(levelS, levelF, value); }
@@ -192,13 +98,13 @@ TubeMaterial MakeTubeMaterial(const TriangleMesh& closed, const Eigen::Vector3d&
     if (std::binary_search(one.begin(), one.end(), v))
       throw Error("colon surface: the caecal and anal ends are within " + std::to_string(o.endDiscMm) + " mm of each other");
   progress.Report(0.1);
-  m.closedF = Harmonic(closed, zero, one);
+  m.closedF = landmarks::AlongColonFunction(closed.V, closed.F, zero, one);
   progress.Report(0.45);
 
   // 2. Cut at the two end levels; the faces between them are the tube.
   const double e = o.endLevel;
-  CutAtLevel(m.closed, m.closedF, e);
-  CutAtLevel(m.closed, m.closedF, 1.0 - e);
+  landmarks::CutAtLevel(m.closed, m.closedF, e);
+  landmarks::CutAtLevel(m.closed, m.closedF, 1.0 - e);
   m.tubeFace.assign(static_cast<std::size_t>(m.closed.F.rows()), false);
   for (Eigen::Index f = 0; f < m.closed.F.rows(); ++f) {
     const double mean = (m.closedF(m.closed.F(f, 0)) + m.closedF(m.closed.F(f, 1)) + m.closedF(m.closed.F(f, 2))) / 3.0;
@@ -273,7 +179,7 @@ TubeMaterial MakeTubeMaterial(const TriangleMesh& closed, const Eigen::Vector3d&
   for (int i = 1; i <= m.checkedLevels; ++i) {
     if (i % 20 == 0) progress.Report(0.8 + 0.2 * i / m.checkedLevels);
     const double level = static_cast<double>(i) / (m.checkedLevels + 1);
-    m.maxCurvesPerLevel = std::max(m.maxCurvesPerLevel, static_cast<int>(LevelSet(m.tube.V, m.tube.F, m.f, level).size()));
+    m.maxCurvesPerLevel = std::max(m.maxCurvesPerLevel, static_cast<int>(landmarks::LevelSet(m.tube.V, m.tube.F, m.f, level).size()));
   }
   return m;
 }

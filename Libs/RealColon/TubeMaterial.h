@@ -11,7 +11,7 @@
 //     anus hint, the geodesically farthest vertex, and the one farthest from that; intrinsic Delaunay cotangent Laplacian with its few
 //     negative weights raised, Flattening/IntrinsicDelaunay.h, so the discrete maximum principle
 //     holds: f has no interior extremum).
-//  2. The surface is cut along the levels f = endLevel and 1 - endLevel (RealColon/IsoLines.h);
+//  2. The surface is cut along the levels f = endLevel and 1 - endLevel (Landmarks/IsoLines.h);
 //     the faces between them are the open tube, a topological cylinder whose boundary loops are
 //     level sets. On it f is harmonic with constant values on both loops: no interior critical
 //     point, so every level set is one loop and two levels never meet.
@@ -27,6 +27,7 @@
 // sets.
 #include "Core/Cancel.h"
 #include "Core/TriangleMesh.h"
+#include "Landmarks/LevelCentreline.h"
 
 #include <Eigen/Core>
 #include <vector>
@@ -69,20 +70,9 @@ struct TubeMaterial {
   double Angle(const Eigen::Vector3d& p, double s) const;   // theta of a wall point p at material s
 };
 
-// The centreline of one embedding of the tube (V, F with the material f per vertex, 0 and 1 on
-// its two boundary loops): the centroids of the level sets at `levels` (0 and 1: the boundary
-// loops), smoothed along the sequence by a Gaussian of smoothingMm. The same construction on
-// the supine and the prone tube, so sample i is the same material loop in both. Optionally the
-// mean loop radius and the lowest point along `down` of each level set.
-struct LevelCentreline {
-  Eigen::MatrixXd points;    // levels x 3
-  Eigen::VectorXd radius;    // mean distance of the loop from its (raw) centroid
-  Eigen::VectorXd maxRadius; // largest distance of a loop point from it
-  Eigen::MatrixXd lowest;    // levels x 3
-};
-LevelCentreline ComputeLevelCentreline(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const Eigen::VectorXd& f,
-                                       const Eigen::VectorXd& levels, double smoothingMm,
-                                       const Eigen::Vector3d& down = Eigen::Vector3d(0, 1, 0));
+// The level-set centreline of one embedding of the tube (Landmarks/LevelCentreline.h).
+using landmarks::ComputeLevelCentreline;
+using landmarks::LevelCentreline;
 
 // closed: closed, connected, manifold, genus-0 surface (normals into the lumen), mm.
 // caecalPole, anus: points near the two ends (which tip is which).

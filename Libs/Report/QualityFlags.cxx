@@ -84,6 +84,30 @@ void LengthFlag(const StageSummaries& s, const QualityThresholds& t, std::vector
   flags.push_back(f);
 }
 
+// The flexures chosen for both scans together (ColonLandmarks with --pairedSurface): not
+// trusted when no ordered joint choice existed (the segments then come from the centreline
+// alignment alone) or the alignment itself was poor.
+void JointFlexureFlag(const StageSummaries& s, const QualityThresholds& t, std::vector<QualityFlag>& flags) {
+  if (s.landmarks[0].is_null()) return;
+  const json joint = s.landmarks[0].value("jointChoice", json());
+  if (!joint.is_object()) return;
+  QualityFlag f{"Flexures chosen jointly", true, ""};
+  const bool consistent = joint.value("consistent", false), fallback = joint.value("fallback", false);
+  const double cost = Number(joint, "alignmentCost", 1.0);
+  for (const char* name : {"HF", "SF", "DSJ", "RSJ"}) {
+    const json fl = joint.value("flexures", json::object()).value(name, json());
+    const std::string how = fl.is_object() ? fl.value("choice", std::string("?")) : std::string("missing");
+    f.detail += std::string(name) + " " + how + ", ";
+  }
+  f.detail += "centreline alignment " + Fixed(cost, 2);
+  if (!consistent || cost > t.maxAlignmentCost) {
+    f.ok = false;
+    f.detail += fallback ? "; no ordered choice: segments from the centreline alignment, pairing not trusted"
+                         : (!consistent ? "; no ordered choice: each scan's own flexures" : "; the centrelines align poorly");
+  }
+  flags.push_back(f);
+}
+
 void FlatteningFlags(const StageSummaries& s, const QualityThresholds& t, std::vector<QualityFlag>& flags) {
   for (int k = 0; k < 2; ++k) {
     const json& fl = s.flattening[k];
@@ -136,6 +160,7 @@ std::vector<QualityFlag> AssessQuality(const StageSummaries& s, const QualityThr
   FlexureFlags(s, flags);
   TaeniaFlags(s, t, flags);
   LengthFlag(s, t, flags);
+  JointFlexureFlag(s, t, flags);
   FlatteningFlags(s, t, flags);
   RegistrationFlags(s, t, flags);
   return flags;

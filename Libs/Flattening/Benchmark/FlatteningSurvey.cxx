@@ -252,7 +252,7 @@ void Gca(json& out) {
     arcs[static_cast<std::size_t>(k)] = landmarks::NearestArcLength(p, r.centerline.points)(0);
   }
   arcs[3] = r.flexures.arc[3];
-  const landmarks::ColonSegments segs = landmarks::SplitColon(colon.colon, r.centerline.points, r.centerline.arc, arcs, {}, np);
+  const landmarks::ColonSegments segs = landmarks::SplitColon(colon.colon, r.alongColon, r.centerline.points, r.centerline.arc, arcs, {}, np);
   GcaSegments("atlas", segs, landmarks::FindTaeniae(segs, r.centerline.points, {}, np), out);
 }
 #endif

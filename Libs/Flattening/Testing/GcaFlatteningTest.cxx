@@ -107,7 +107,7 @@ void FlattenGcaColon() {
   // The oriented closed surface FindLandmarks used (ReconstructSurface's normals point into the lumen).
   ASSERT_FALSE(r.flippedOrientation);
   const landmarks::ColonSegments segs =
-      landmarks::SplitColon(colon.colon, r.centerline.points, r.centerline.arc, arcs, {}, np);
+      landmarks::SplitColon(colon.colon, r.alongColon, r.centerline.points, r.centerline.arc, arcs, {}, np);
   const std::vector<landmarks::Taenia> taeniae = landmarks::FindTaeniae(segs, r.centerline.points, {}, np);
   FlattenSegments("atlas", segs, taeniae);
 }

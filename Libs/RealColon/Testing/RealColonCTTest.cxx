@@ -3,9 +3,8 @@
 // surface they make is one closed genus-0 surface from the CT, made in one contouring pass, on
 // the true wall (issue 18: mean within 0.1 mm), on a smooth colon and on the long GCA colon
 // with touching loops (whose prone surface had a non-manifold edge before issue 18).
-#include "Cleansing/ElectronicCleansing.h"
+#include "PipelineSurface.h"
 #include "RealColon/RealColonPhantom.h"
-#include "Segmentation/LumenSegmentation.h"
 #include "Surface/MeshTopology.h"
 #include "Surface/SurfaceDistance.h"
 #include "Surface/SurfaceReconstruction.h"
@@ -29,13 +28,9 @@ void ExpectPipelineReconstructsTheTrueWall(const std::string& atlas, std::uint32
   for (const phantom::Posture posture : {phantom::Posture::Supine, phantom::Posture::Prone}) {
     const RealColonScan& scan = posture == phantom::Posture::Supine ? pair.supine : pair.prone;
     ASSERT_FALSE(scan.pools.empty());  // the CT has tagged fluid to cleanse
-    const Volume<short> ct = RealColonCT(pair, posture, o, np);
-    const cleansing::CleansingResult clean = cleansing::Cleanse(ct, {}, np);
-    EXPECT_GT(clean.taggedVoxels, 100u);
-    const segmentation::LumenSegmentation seg = segmentation::SegmentColonLumen(clean.cleansed, {}, np);
-    Volume<float> label = seg.label.Like<float>(0.0f);
-    std::copy(seg.label.voxels.begin(), seg.label.voxels.end(), label.voxels.begin());
-    const surface::SurfaceResult surf = surface::ReconstructSurface(label, &clean.cleansed, {}, np);
+    const testing::PipelineSurface ps = testing::SurfaceFromCT(pair, posture, o);
+    EXPECT_GT(ps.taggedVoxels, 100u);
+    const surface::SurfaceResult& surf = ps.surface;
     EXPECT_TRUE(surf.topology.IsClosedGenusZero()) << surf.topology.Summary();
     EXPECT_TRUE(surf.usedCT);
     EXPECT_EQ(surf.contourPasses, 1);
@@ -57,7 +52,7 @@ void ExpectPipelineReconstructsTheTrueWall(const std::string& atlas, std::uint32
     mean /= static_cast<double>(d.size());
     const double p95 = d[static_cast<std::size_t>(0.95 * static_cast<double>(d.size()))];
     std::printf("%s: lumen %.0f ml, surface to true wall mean %.3f p95 %.3f max %.3f mm%s\n",
-                posture == phantom::Posture::Supine ? "supine" : "prone", seg.lumenVolumeMl, mean, p95, d.back(),
+                posture == phantom::Posture::Supine ? "supine" : "prone", ps.lumenVolumeMl, mean, p95, d.back(),
                 surf.usedCT ? "" : " (label only)");
     EXPECT_LT(mean, 0.1);  // issue 18: real-colon pairs within 0.1 mm on average (measured 0.02-0.03 at 1 mm)
   }

@@ -8,6 +8,7 @@
 #include <vtkPolyData.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -47,6 +48,11 @@ double NearestArc(const Eigen::MatrixXd& P, const Eigen::Vector3d& p, double* di
 }
 
 TriangleMesh TubeAround(const Eigen::MatrixXd& P, double radius, double grid) {
+  return TubeAround(P, Eigen::VectorXd::Constant(P.rows(), radius), grid);
+}
+
+TriangleMesh TubeAround(const Eigen::MatrixXd& P, const Eigen::VectorXd& radii, double grid) {
+  const double radius = radii.maxCoeff();
   const Eigen::RowVector3d lo = P.colwise().minCoeff().array() - radius - 3 * grid;
   const Eigen::RowVector3d hi = P.colwise().maxCoeff().array() + radius + 3 * grid;
   Volume<float> field;
@@ -57,9 +63,16 @@ TriangleMesh TubeAround(const Eigen::MatrixXd& P, double radius, double grid) {
   for (std::size_t k = 0; k < field.size[2]; ++k)
     for (std::size_t j = 0; j < field.size[1]; ++j)
       for (std::size_t i = 0; i < field.size[0]; ++i) {
-        double d = 0;
-        NearestArc(P, field.IndexToPhysical(Eigen::Vector3d(double(i), double(j), double(k))), &d);
-        field.At(i, j, k) = static_cast<float>(radius - d);
+        // Inside where some point of the polyline is nearer than its own radius.
+        const Eigen::Vector3d p = field.IndexToPhysical(Eigen::Vector3d(double(i), double(j), double(k)));
+        double best = -std::numeric_limits<double>::infinity();
+        for (Eigen::Index s = 0; s + 1 < P.rows(); ++s) {
+          const Eigen::Vector3d a = P.row(s), b = P.row(s + 1);
+          const double len2 = (b - a).squaredNorm();
+          const double t = len2 > 0 ? std::clamp((p - a).dot(b - a) / len2, 0.0, 1.0) : 0.0;
+          best = std::max(best, (1 - t) * radii(s) + t * radii(s + 1) - (a + t * (b - a) - p).norm());
+        }
+        field.At(i, j, k) = static_cast<float>(best);
       }
   vtkNew<vtkImageData> image;
   surface::ToImageData(field, image);

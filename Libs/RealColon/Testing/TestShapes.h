@@ -13,6 +13,8 @@ TriangleMesh Cylinder(double r, double h, int n, int m);
 // Closed surface of the points within `radius` of a polyline (a tube with round ends), contoured
 // on a `grid` mm lattice (vtkFlyingEdges3D), normals into the tube.
 TriangleMesh TubeAround(const Eigen::MatrixXd& polyline, double radius, double grid);
+// The same with a radius per polyline point (linear along each segment).
+TriangleMesh TubeAround(const Eigen::MatrixXd& polyline, const Eigen::VectorXd& radii, double grid);
 
 // Distance from p to the polyline and the arc length of its nearest point.
 double NearestArc(const Eigen::MatrixXd& polyline, const Eigen::Vector3d& p, double* distance = nullptr);

@@ -82,3 +82,26 @@ TEST(QualityFlags, MissingStagesGiveNoFlagsAndMissingFlexuresAreNamed) {
   EXPECT_FALSE(flags[0].ok);
   EXPECT_NE(flags[0].detail.find("DSJ missing"), std::string::npos);
 }
+
+TEST(QualityFlags, JointFlexuresAreTrustedOnlyWithAnOrderedChoiceAndAGoodAlignment) {
+  const auto joint = [](bool consistent, bool fallback, double cost) {
+    json j{{"pairedWith", "prone"}, {"consistent", consistent}, {"fallback", fallback}, {"alignmentCost", cost}};
+    for (const char* f : {"HF", "SF", "DSJ", "RSJ"}) j["flexures"][f] = {{"choice", "agreed"}};
+    j["flexures"]["DSJ"]["choice"] = "carried from supine";
+    return j;
+  };
+  StageSummaries s = Good();
+  s.landmarks[0]["jointChoice"] = joint(true, false, 0.08);
+  const QualityFlag& ok = Find(AssessQuality(s), "Flexures chosen jointly");
+  EXPECT_TRUE(ok.ok) << ok.detail;
+  EXPECT_NE(ok.detail.find("DSJ carried from supine"), std::string::npos);
+  s.landmarks[0]["jointChoice"] = joint(false, true, 0.08);
+  const auto fallback = AssessQuality(s);
+  EXPECT_FALSE(Find(fallback, "Flexures chosen jointly").ok);
+  EXPECT_NE(Find(fallback, "Flexures chosen jointly").detail.find("not trusted"), std::string::npos);
+  s.landmarks[0]["jointChoice"] = joint(true, false, 0.6);
+  EXPECT_FALSE(Find(AssessQuality(s), "Flexures chosen jointly").ok);
+  // A single-scan landmark run has no joint choice and no such flag.
+  s.landmarks[0].erase("jointChoice");
+  EXPECT_THROW(Find(AssessQuality(s), "Flexures chosen jointly"), std::runtime_error);
+}

@@ -123,9 +123,9 @@ std::vector<std::pair<std::string, double>> Plan(const Options& o) {
       plan.emplace_back(std::string("segmentation ") + scan, 5.0);
     }
     plan.emplace_back(std::string("surface ") + scan, 9.0);
-    plan.emplace_back(std::string("landmarks ") + scan, 2.0);
-    plan.emplace_back(std::string("flattening ") + scan, 1.0);
   }
+  plan.emplace_back("landmarks", 4.0);
+  for (const char* scan : kScans) plan.emplace_back(std::string("flattening ") + scan, 1.0);
   plan.emplace_back("registration", 2.0);
   if (o.views) plan.emplace_back("flat views", 1.0);
   if (!o.findings.empty()) plan.emplace_back("transfer findings", 0.2);
@@ -185,9 +185,15 @@ void Run(cli::ModuleContext& ctx) {
       p.Run("surface " + scan, COLONMAP_STAGE(ColonSurface),
             {o.scan[k], surface, "--labelValue", o.labelValue, "--targetFaces", o.targetFaces});
     }
-    p.Run("landmarks " + scan, COLONMAP_STAGE(ColonLandmarks), {surface, p.In("landmarks", scan)});
-    p.Run("flattening " + scan, COLONMAP_STAGE(ColonFlattening), {p.In("landmarks", scan), p.In("flattening", scan)});
   }
+  // Both scans at once: their flexures are chosen together (the same anatomy in both).
+  p.Run("landmarks", COLONMAP_STAGE(ColonLandmarks),
+        {p.In("surface", "supine_surface.vtp"), p.In("landmarks", "supine"), "--pairedSurface",
+         p.In("surface", "prone_surface.vtp"), "--pairedOutputDirectory", p.In("landmarks", "prone"), "--scanNames",
+         "supine,prone"});
+  for (const char* scan : kScans)
+    p.Run(std::string("flattening ") + scan, COLONMAP_STAGE(ColonFlattening),
+          {p.In("landmarks", scan), p.In("flattening", scan)});
   const std::string reg = p.In("registration", "registration.vtp");
   p.Run("registration", COLONMAP_STAGE(ColonRegistration),
         {p.In("flattening", "supine"), p.In("flattening", "prone"), p.Folder("registration"), "--method", o.method});

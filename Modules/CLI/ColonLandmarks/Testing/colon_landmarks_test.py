@@ -132,6 +132,34 @@ try:
     check(r.returncode == 0 and all(filecmp.cmp(os.path.join(work, "supine", n), os.path.join(again, n), shallow=False)
                                     for n in names), "two runs differ")
 
+    # Both scans at once (--pairedSurface): each folder as a single run writes it, each flexure
+    # within 20 mm of the truth in both scans, the joint choice in landmarks.json and the notes.
+    ps, pp, ret = os.path.join(work, "pair_supine"), os.path.join(work, "pair_prone"), os.path.join(work, "pair_ret.txt")
+    r = run("--returnparameterfile", ret, os.path.join(data, "supine_surface.vtp"), ps,
+            "--pairedSurface", os.path.join(data, "prone_surface.vtp"), "--pairedOutputDirectory", pp)
+    check(r.returncode == 0 and r.stderr == "", f"paired run: {r.returncode} {r.stderr}")
+    check("ColonLandmarks: supine centreline" in r.stdout and "ColonLandmarks: prone centreline" in r.stdout and
+          "joint with prone" in r.stdout, "paired notes")
+    for posture, folder in (("supine", ps), ("prone", pp)):
+        for n in names:
+            check(os.path.isfile(os.path.join(folder, n)), f"paired {posture}: {n} missing")
+        if not os.path.isfile(os.path.join(folder, "landmarks.json")):
+            continue
+        joint = json.load(open(os.path.join(folder, "landmarks.json"))).get("jointChoice", {})
+        check(joint.get("pairedWith") == ("prone" if posture == "supine" else "supine") and joint.get("consistent"),
+              f"paired {posture}: jointChoice {joint}")
+        check(set(joint.get("flexures", {})) == {"HF", "SF", "DSJ", "RSJ"} and
+              all(f["choice"] in ("agreed", "rechosen") or f["choice"].startswith("carried from ")
+                  for f in joint.get("flexures", {}).values()), f"paired {posture}: choices")
+        _, tc = points(os.path.join(data, posture + "_centerline.mrk.json"))
+        _, tf = points(os.path.join(data, posture + "_flexures.mrk.json"))
+        _, fl = points(os.path.join(folder, "flexures.mrk.json"))
+        for (label, p, _), (_, tp, _) in zip(fl, tf):
+            d = project(p, [q[1] for q in tc]) - project(tp, [q[1] for q in tc])
+            check(abs(d) < 20.0, f"paired {posture} {label} off by {d:.1f} mm")
+    v = returns(ret)
+    check(v.get("pairedFlexureArcLengths", "").count(",") == 3, f"paired return parameters {v}")
+
     # Errors: one stderr line naming the input, non-zero exit, no output.
     two, one = os.path.join(work, "two.stl"), os.path.join(work, "one.stl")
     stl(two, [0, 100])
@@ -145,6 +173,12 @@ try:
         check(r.returncode != 0, f"{args}: exit code 0")
         check(r.stderr.count("\n") == 1 and needle in r.stderr, f"{args}: stderr {r.stderr!r}")
         check(not os.path.exists(bad) or not os.listdir(bad), f"{args}: output written")
+    # A bad paired surface is named as such (its file, "paired surface"); neither folder is written.
+    bs, bp = os.path.join(work, "bad_s"), os.path.join(work, "bad_p")
+    r = run(os.path.join(data, "supine_surface.vtp"), bs, "--pairedSurface", two, "--pairedOutputDirectory", bp)
+    check(r.returncode != 0 and r.stderr.count("\n") == 1 and "paired surface" in r.stderr and "two.stl" in r.stderr,
+          f"bad paired surface: {r.returncode} {r.stderr!r}")
+    check(all(not os.path.exists(d) or not os.listdir(d) for d in (bs, bp)), "bad paired surface: output written")
 finally:
     shutil.rmtree(work, ignore_errors=True)
 

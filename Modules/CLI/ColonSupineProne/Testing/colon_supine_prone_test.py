@@ -52,7 +52,7 @@ for f in ("registration.vtp", "registration_prone.vtp", "summary.json", "report.
 t.check(not [n for n in os.listdir(out) if n.startswith(".colonmap-tmp")], "no temporaries left")
 summary = json.load(open(os.path.join(out, "summary.json"))) if os.path.exists(os.path.join(out, "summary.json")) else {}
 names = [s["name"] for s in summary.get("stages", [])]
-for stage in ("cleansing supine", "segmentation prone", "surface supine", "landmarks prone", "flattening supine",
+for stage in ("cleansing supine", "segmentation prone", "surface supine", "landmarks", "flattening supine",
               "registration", "transfer findings", "evaluation"):
     t.check(stage in names, f"summary.json has stage '{stage}'")
 t.check(all(s["seconds"] > 0 for s in summary.get("stages", [])), "every stage has a time")

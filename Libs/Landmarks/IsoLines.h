@@ -9,7 +9,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-namespace colonmap::realcolon {
+namespace colonmap::landmarks {
 
 // Cuts the mesh along {f = level}: every edge whose ends lie strictly on both sides gets a new
 // vertex at the crossing (f = level there exactly; point arrays interpolated, see
@@ -41,4 +41,4 @@ struct LevelSummary {
 LevelSummary SummarizeLevels(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const Eigen::VectorXd& f,
                              const Eigen::VectorXd& levels, const Eigen::Vector3d& down);
 
-}  // namespace colonmap::realcolon
+}  // namespace colonmap::landmarks

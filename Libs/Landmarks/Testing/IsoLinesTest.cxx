@@ -1,20 +1,20 @@
 // Level sets of a linear function on a cylinder: known loops, centroids, radii and cuts.
-#include "RealColon/IsoLines.h"
+#include "Landmarks/IsoLines.h"
 #include "Surface/MeshTopology.h"
-#include "TestShapes.h"
+#include "../../RealColon/Testing/TestShapes.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-namespace colonmap::realcolon {
+namespace colonmap::landmarks {
 namespace {
 
 Eigen::VectorXd Height(const TriangleMesh& m, double h) { return m.V.col(2) / h; }
 
 TEST(IsoLines, LevelSetOfTheAxialCoordinateIsOneLoopOfThePolygonsPerimeter) {
   const int n = 48;
-  const TriangleMesh c = testing::Cylinder(10.0, 50.0, n, 25);
+  const TriangleMesh c = realcolon::testing::Cylinder(10.0, 50.0, n, 25);
   const Eigen::VectorXd f = Height(c, 50.0);
   const std::vector<LevelCurve> curves = LevelSet(c.V, c.F, f, 0.37);
   ASSERT_EQ(curves.size(), 1u);
@@ -25,7 +25,7 @@ TEST(IsoLines, LevelSetOfTheAxialCoordinateIsOneLoopOfThePolygonsPerimeter) {
 }
 
 TEST(IsoLines, SummaryGivesTheAxisTheRadiusAndTheLowestPoint) {
-  const TriangleMesh c = testing::Cylinder(10.0, 50.0, 64, 25);
+  const TriangleMesh c = realcolon::testing::Cylinder(10.0, 50.0, 64, 25);
   const Eigen::VectorXd f = Height(c, 50.0);
   Eigen::VectorXd levels(3);
   levels << 0.1, 0.5, 0.93;
@@ -41,7 +41,7 @@ TEST(IsoLines, SummaryGivesTheAxisTheRadiusAndTheLowestPoint) {
 }
 
 TEST(IsoLines, CutAtLevelMakesTheLevelSetAChainOfEdges) {
-  TriangleMesh c = testing::Cylinder(10.0, 50.0, 32, 10);
+  TriangleMesh c = realcolon::testing::Cylinder(10.0, 50.0, 32, 10);
   DataArray tag;
   tag.values = c.V.col(0);
   c.pointData["X"] = tag;
@@ -68,4 +68,4 @@ TEST(IsoLines, CutAtLevelMakesTheLevelSetAChainOfEdges) {
 }
 
 }  // namespace
-}  // namespace colonmap::realcolon
+}  // namespace colonmap::landmarks

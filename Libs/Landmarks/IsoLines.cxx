@@ -1,4 +1,4 @@
-#include "RealColon/IsoLines.h"
+#include "Landmarks/IsoLines.h"
 
 #include "Flattening/SplitEdges.h"
 
@@ -9,7 +9,7 @@
 #include <map>
 #include <unordered_map>
 
-namespace colonmap::realcolon {
+namespace colonmap::landmarks {
 namespace {
 
 std::uint64_t EdgeKey(int a, int b) {
@@ -162,4 +162,4 @@ LevelSummary SummarizeLevels(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
   return s;
 }
 
-}  // namespace colonmap::realcolon
+}  // namespace colonmap::landmarks

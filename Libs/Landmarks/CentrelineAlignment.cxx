@@ -1,0 +1,64 @@
+#include "Landmarks/CentrelineAlignment.h"
+
+#include "Analysis/DynamicTimeWarping.h"
+#include "Analysis/MidlineProjection.h"
+#include "Core/Error.h"
+#include "Landmarks/Centerline.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace colonmap::landmarks {
+
+namespace {
+
+// Unit direction of travel at each sample of an evenly spaced polyline (chord over +-w samples).
+Eigen::MatrixXd Directions(const Eigen::MatrixXd& P, int w) {
+  const Eigen::Index n = P.rows();
+  Eigen::MatrixXd t(n, 3);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Eigen::RowVector3d d = P.row(std::min<Eigen::Index>(n - 1, i + w)) - P.row(std::max<Eigen::Index>(0, i - w));
+    const double len = d.norm();
+    t.row(i) = len > 0 ? Eigen::RowVector3d(d / len) : Eigen::RowVector3d::Zero();
+  }
+  return t;
+}
+
+double Interpolate(const Eigen::VectorXd& x, const Eigen::VectorXd& y, double v) {
+  const Eigen::Index n = x.size();
+  if (v <= x(0)) return y(0);
+  if (v >= x(n - 1)) return y(n - 1);
+  const Eigen::Index i = std::upper_bound(x.data(), x.data() + n, v) - x.data() - 1;
+  const double t = (v - x(i)) / (x(i + 1) - x(i));
+  return y(i) + t * (y(i + 1) - y(i));
+}
+
+}  // namespace
+
+CentrelineAlignment::CentrelineAlignment(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b,
+                                         const CentrelineAlignmentOptions& o) {
+  if (a.rows() < 2 || b.rows() < 2) throw Error("centreline alignment: each centreline needs two points");
+  const Eigen::MatrixXd A = ResamplePolyline(a, o.stepMm), B = ResamplePolyline(b, o.stepMm);
+  arcA_ = analysis::ArcLength(A);
+  arcB_ = analysis::ArcLength(B);
+  const int w = std::max(1, static_cast<int>(std::round(o.tangentMm / o.stepMm)));
+  analysis::WarpingOptions wo;
+  wo.band = o.band;
+  wo.stepPenalty = o.stepPenalty;
+  const analysis::Warping warp = analysis::WarpSequences(Directions(A, w), Directions(B, w), wo);
+  meanCost = warp.cost / std::max(1, warp.length);
+  const auto toArc = [](const Eigen::VectorXd& arcs, double index) {
+    const Eigen::Index i = std::clamp<Eigen::Index>(static_cast<Eigen::Index>(index), 0, arcs.size() - 1);
+    const Eigen::Index j = std::min<Eigen::Index>(i + 1, arcs.size() - 1);
+    return arcs(i) + (index - static_cast<double>(i)) * (arcs(j) - arcs(i));
+  };
+  matchedB_.resize(arcA_.size());
+  matchedA_.resize(arcB_.size());
+  for (Eigen::Index i = 0; i < arcA_.size(); ++i) matchedB_(i) = toArc(arcB_, warp.matchedInB(i));
+  for (Eigen::Index j = 0; j < arcB_.size(); ++j) matchedA_(j) = toArc(arcA_, warp.matchedInA(j));
+}
+
+double CentrelineAlignment::AToB(double arcA) const { return Interpolate(arcA_, matchedB_, arcA); }
+double CentrelineAlignment::BToA(double arcB) const { return Interpolate(arcB_, matchedA_, arcB); }
+
+}  // namespace colonmap::landmarks
