@@ -175,7 +175,9 @@ TEST(LevelSetCuts, AlongColonArcLengthIsMonotoneInFAndIgnoresFarProjections) {
   std::sort(byF.begin(), byF.end());
   for (int i = 1; i < n; ++i) EXPECT_GE(byF[i].second, byF[i - 1].second - 1e-12);
   for (int i = 0; i < n; ++i)
-    if (f(i) > 0.05 && f(i) < 0.95) EXPECT_NEAR(fit(i), 500.0 * f(i), 1.0);  // the end bins are pinned
+    if (f(i) > 0.05 && f(i) < 0.95) {  // the end bins are pinned
+      EXPECT_NEAR(fit(i), 500.0 * f(i), 1.0);
+    }
   EXPECT_THROW(AlongColonArcLength(f, Eigen::VectorXd::Zero(3), 500.0), Error);
   // The ends are pinned to the centreline's ends even where the wall's nearest arc stops short
   // (a blunt tip): arcs 5..495 give a fit from 0 to 500.

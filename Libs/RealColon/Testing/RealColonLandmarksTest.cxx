@@ -59,7 +59,9 @@ TEST(RealColonLandmarks, JointFlexuresPutTheSameAnatomyInBothScansWhereOwnRulesD
                   landmarks::Flexures::Names()[f], truth, chosen, chosen - truth, r[k].joint->how[f].c_str(), own,
                   own - truth);
       // The RSJ of GCA 00020 is assumed (150 mm from the anus; the atlas has none): not checked.
-      if (f < 3) EXPECT_LT(std::fabs(chosen - truth), 40.0) << landmarks::Flexures::Names()[f] << (k ? " prone" : " supine");
+      if (f < 3) {
+        EXPECT_LT(std::fabs(chosen - truth), 40.0) << landmarks::Flexures::Names()[f] << (k ? " prone" : " supine");
+      }
     }
   }
 }
