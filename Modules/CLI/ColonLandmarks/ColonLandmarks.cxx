@@ -64,6 +64,12 @@ void Run(cli::ModuleContext& ctx) {
   if (pairedPath.empty() != pairedOut.empty())
     throw Error("paired scan: give both --pairedSurface and --pairedOutputDirectory, or neither");
   const bool pair = !pairedPath.empty();
+  const auto folder = [](const std::string& p) {
+    fs::path f = fs::weakly_canonical(fs::path(p));
+    return f.filename().empty() ? f.parent_path() : f;  // "dir/" is "dir"
+  };
+  if (pair && folder(out) == folder(pairedOut))
+    throw Error("paired output folder '" + pairedOut + "': the same folder as the output folder; the two scans need their own");
   std::array<std::string, 2> names{"input", "paired"};
   if (const std::vector<std::string> n = ctx.args.GetStringVector("scanNames"); n.size() == 2) names = {n[0], n[1]};
   else if (!n.empty()) throw Error("scan names: two names needed (--scanNames supine,prone)");

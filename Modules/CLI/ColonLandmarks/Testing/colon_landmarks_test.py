@@ -179,6 +179,12 @@ try:
     check(r.returncode != 0 and r.stderr.count("\n") == 1 and "paired surface" in r.stderr and "two.stl" in r.stderr,
           f"bad paired surface: {r.returncode} {r.stderr!r}")
     check(all(not os.path.exists(d) or not os.listdir(d) for d in (bs, bp)), "bad paired surface: output written")
+    # Both scans into one folder would overwrite each other: refused.
+    r = run(os.path.join(data, "supine_surface.vtp"), bs, "--pairedSurface", os.path.join(data, "prone_surface.vtp"),
+            "--pairedOutputDirectory", bs + "/")
+    check(r.returncode != 0 and r.stderr.count("\n") == 1 and "same folder" in r.stderr,
+          f"same output folders: {r.returncode} {r.stderr!r}")
+    check(not os.path.exists(bs) or not os.listdir(bs), "same output folders: output written")
 finally:
     shutil.rmtree(work, ignore_errors=True)
 
