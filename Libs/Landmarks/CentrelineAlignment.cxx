@@ -1,6 +1,7 @@
 #include "Landmarks/CentrelineAlignment.h"
 
 #include "Analysis/DynamicTimeWarping.h"
+#include "Analysis/Interpolate.h"
 #include "Analysis/MidlineProjection.h"
 #include "Core/Error.h"
 #include "Landmarks/Centerline.h"
@@ -22,15 +23,6 @@ Eigen::MatrixXd Directions(const Eigen::MatrixXd& P, int w) {
     t.row(i) = len > 0 ? Eigen::RowVector3d(d / len) : Eigen::RowVector3d::Zero();
   }
   return t;
-}
-
-double Interpolate(const Eigen::VectorXd& x, const Eigen::VectorXd& y, double v) {
-  const Eigen::Index n = x.size();
-  if (v <= x(0)) return y(0);
-  if (v >= x(n - 1)) return y(n - 1);
-  const Eigen::Index i = std::upper_bound(x.data(), x.data() + n, v) - x.data() - 1;
-  const double t = (v - x(i)) / (x(i + 1) - x(i));
-  return y(i) + t * (y(i + 1) - y(i));
 }
 
 }  // namespace
@@ -58,7 +50,7 @@ CentrelineAlignment::CentrelineAlignment(const Eigen::MatrixXd& a, const Eigen::
   for (Eigen::Index j = 0; j < arcB_.size(); ++j) matchedA_(j) = toArc(arcA_, warp.matchedInA(j));
 }
 
-double CentrelineAlignment::AToB(double arcA) const { return Interpolate(arcA_, matchedB_, arcA); }
-double CentrelineAlignment::BToA(double arcB) const { return Interpolate(arcB_, matchedA_, arcB); }
+double CentrelineAlignment::AToB(double arcA) const { return analysis::InterpolateLinear(arcA_, matchedB_, arcA); }
+double CentrelineAlignment::BToA(double arcB) const { return analysis::InterpolateLinear(arcB_, matchedA_, arcB); }
 
 }  // namespace colonmap::landmarks

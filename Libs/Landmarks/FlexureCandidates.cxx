@@ -45,7 +45,10 @@ FlexureCandidates FindFlexureCandidates(const Eigen::MatrixXd& P, const Eigen::V
   }
   for (int k = 0; k < 4; ++k) {
     std::vector<double>& a = found[k];
-    a.push_back(c.byDefault.arc[k]);  // the default always counts
+    // The default thresholds are also a point of the grid, so their place counts twice: a
+    // slight preference for the rules as tuned (the measured figures were made so; dropping it
+    // moves the group medians by a few mm).
+    a.push_back(c.byDefault.arc[k]);
     std::sort(a.begin(), a.end());
     std::size_t from = 0;
     for (std::size_t i = 1; i <= a.size(); ++i) {

@@ -1,5 +1,6 @@
 #include "RealColon/TubeMaterial.h"
 
+#include "Analysis/Interpolate.h"
 #include "Analysis/MidlineProjection.h"
 #include "Core/Error.h"
 #include "Landmarks/AlongColonFunction.h"
@@ -38,33 +39,20 @@ int Farthest(const std::vector<double>& d) {
   return best;
 }
 
-Eigen::Index SegmentOf(const Eigen::VectorXd& knots, double x) {
-  const auto it = std::upper_bound(knots.data(), knots.data() + knots.size(), x);
-  Eigen::Index i = (it - knots.data()) - 1;
-  return std::clamp<Eigen::Index>(i, 0, knots.size() - 2);
-}
-
-double Interpolate(const Eigen::VectorXd& x, const Eigen::VectorXd& y, double v) {
-  const Eigen::Index i = SegmentOf(x, v);
-  const double dx = x(i + 1) - x(i);
-  const double t = dx > 0 ? std::clamp((v - x(i)) / dx, 0.0, 1.0) : 0.0;
-  return y(i) + t * (y(i + 1) - y(i));
-}
-
 }  // namespace
 
-double TubeMaterial::SOfF(double value) const { return Interpolate(levelF, levelS, value); }
-double TubeMaterial::FOfS(double value) const { return Interpolate(levelS, levelF, value); }
+double TubeMaterial::SOfF(double value) const { return analysis::InterpolateLinear(levelF, levelS, value); }
+double TubeMaterial::FOfS(double value) const { return analysis::InterpolateLinear(levelS, levelF, value); }
 
 Eigen::Vector3d TubeMaterial::CentrePoint(double value) const {
-  const Eigen::Index i = SegmentOf(levelS, value);
+  const Eigen::Index i = analysis::KnotInterval(levelS, value);
   const double ds = levelS(i + 1) - levelS(i);
   const double t = ds > 0 ? std::clamp((value - levelS(i)) / ds, 0.0, 1.0) : 0.0;
   return ((1.0 - t) * centroid.row(i) + t * centroid.row(i + 1)).transpose();
 }
 
 double TubeMaterial::Angle(const Eigen::Vector3d& p, double value) const {
-  const Eigen::Index j = SegmentOf(levelS, value);
+  const Eigen::Index j = analysis::KnotInterval(levelS, value);
   const Eigen::Vector3d d = p - CentrePoint(value);
   double a = std::atan2(d.dot(frameB.row(j).transpose()), d.dot(frameN.row(j).transpose()));
   if (a < 0) a += 2.0 * kPi;
