@@ -348,6 +348,9 @@ std::string SummaryJson(const LandmarkResult& r, bool withTimes) {
                                               {"ownRulesArcLengthMm", n.ownRuleArc[k]},
                                               {"ownRulesDisagreementMm", n.defaultDisagreementMm[k]}};
     j["jointChoice"] = jn;
+  } else {
+    // One scan alone: its flexures come from its own rules (the registration will not trust them).
+    j["jointChoice"] = {{"pairedWith", ""}, {"consistent", true}, {"fallback", false}};
   }
   j["taeniaMethod"] = "fold-interruption phase tracking (mean curvature > 0 as folds); TO is the cut";
   j["times"] = nlohmann::ordered_json::object();

@@ -154,6 +154,8 @@ TransferredPoint PointTransfer::Transfer(const Eigen::Vector3d& p) const {
   } else {
     t.uncertaintyMm = t.uncertaintyMedianMm = Uncertainty(edge, t.offset, t.dilatation);
   }
+  // Reliable (0/1 per vertex, ColonRegistration): as the nearest of the face's vertices.
+  if (const double r = SourceValue("Reliable", t); std::isfinite(r)) t.reliable = r >= 0.5;
   return t;
 }
 

@@ -29,6 +29,7 @@ struct TransferredPoint {
   double dilatation = 1.0;    // K of the source face (1 without the array)
   double uncertaintyMm = 0.0; // 90% bound of the error (mm), see PointTransfer::Transfer
   double uncertaintyMedianMm = 0.0;  // the predicted median error (mm)
+  bool reliable = true;       // false where the registration cannot be trusted (RegistrationReliability.h)
 };
 
 // registration.vtp (supine, with the Prone* arrays) and registration_prone.vtp (`pronePath`, or

@@ -12,27 +12,46 @@ namespace colonmap::registration {
 
 namespace {
 
-// The model's coefficients (see the header). Fitted by least squares of log(max(true error,
-// 0.2 mm)) on the phantom's evaluation wall points (seeds 1-10, 2000 points, clinical spacing,
-// surfaces from our own CT pipeline, harmonic registration with graph-cut folds and spectral
-// matching); the guard's dropped fraction did not help and has coefficient 0. Held out (fit on
-// odd seeds, tested on even, and back): Pearson 0.38/0.41, coverage of the 90% bound 0.89/0.92.
-// kLogSpread: the standard deviation of the fit's log residuals.
-constexpr double kC[8] = {-1.1517, 0.3248, 0.3592, 0.0904, 0.6950, 0.9606, 0.0, 0.7181};
-constexpr double kLogSpread = 0.7438;
-constexpr double kZ90 = 1.2816;  // standard normal 90% quantile
+// The model's coefficients, in the order of UncertaintyFeatures, and the 90% quantile of the
+// fit's log residuals. Written by scripts/fit_uncertainty.py (least squares of
+// log(max(true error, 0.2 mm)), coefficients >= 0 but the intercept) on 42 pairs (2026-12-02): the
+// tube phantom at deformation 0.5 (seeds 1-10) and 1.0 (seeds 1-8), real-colon pairs of GCA 00020,
+// HuBMAP VHM and VHF (seeds 1-8 each, 1 mm); 8400 wall points and 172 polyps. The fewer-matches
+// and length-ratio inputs came out at 0 (the distance to a match and RegistrationReliability.h
+// carry them). docs/accuracy.md gives the held-back figures.
+constexpr double kC[kUncertaintyFeatures] = {-1.5654, 0.2529, 0.6834, 0.1432, 0.0992, 0.8235, 0.1041, 0.0000, 0.6448, 0.5603, 0.0000};
+constexpr double kLogQ90 = 1.0520;
 
 }  // namespace
 
-double UncertaintyMedian(double loo, double nearMm, double correctionMm, double dilatation, const SegmentEvidence& s) {
+Eigen::Matrix<double, kUncertaintyFeatures, 1> UncertaintyFeatures(double loo, double nearMm, double correctionMm,
+                                                                   double dilatation, double flexureMm,
+                                                                   const SegmentEvidence& s) {
   const double K = std::isfinite(dilatation) ? std::max(1.0, dilatation) : 10.0;
-  const double logSigma = kC[0] + kC[1] * std::log1p(std::max(0.0, loo)) + kC[2] * std::log1p(std::max(0.0, nearMm) / 10.0) +
-                          kC[3] * std::log1p(std::max(0.0, correctionMm)) + kC[4] * std::log(K) +
-                          kC[5] * (1.0 - s.pathCorrelation) + kC[6] * s.droppedFraction + kC[7] / (1.0 + s.matchesPer100mm);
-  return std::exp(logSigma);
+  Eigen::Matrix<double, kUncertaintyFeatures, 1> x;
+  x << 1.0, std::log1p(std::max(0.0, loo)), std::log1p(std::max(0.0, nearMm) / 10.0), std::log1p(std::max(0.0, correctionMm)),
+      std::log(K), 1.0 - s.pathCorrelation, s.droppedFraction, 1.0 / (1.0 + s.matchesPer100mm),
+      std::exp(-std::max(0.0, flexureMm) / 30.0), 1.0 - s.curvatureAgreement, s.lengthMismatch;
+  return x;
 }
 
-double UncertaintyBound90(double median) { return median * std::exp(kZ90 * kLogSpread); }
+double UncertaintyMedian(double loo, double nearMm, double correctionMm, double dilatation, double flexureMm,
+                         const SegmentEvidence& s) {
+  const Eigen::Map<const Eigen::Matrix<double, kUncertaintyFeatures, 1>> c(kC);
+  return std::exp(c.dot(UncertaintyFeatures(loo, nearMm, correctionMm, dilatation, flexureMm, s)));
+}
+
+double UncertaintyBound90(double median) { return median * std::exp(kLogQ90); }
+
+double MmPerFlatUnit(const FlatSegment& flat) {
+  const double area3 = surface::MixedVertexAreas(flat.position, flat.F).sum();
+  const double areaFlat = flattening::SignedFlatAreas(flat.uv, flat.F).cwiseAbs().sum();
+  return areaFlat > 0 ? std::sqrt(area3 / areaFlat) : 1.0;
+}
+
+double FlatLengthMm(const FlatSegment& flat) {
+  return flat.uv.rows() ? (flat.uv.col(1).maxCoeff() - flat.uv.col(1).minCoeff()) * MmPerFlatUnit(flat) : 0.0;
+}
 
 VertexUncertainty EstimateUncertainty(const FlatSegment& flat, const Eigen::MatrixXd& h, const Eigen::VectorXd& K,
                                       const std::vector<ConstraintPoint>& constraints, const SegmentEvidence& segment,
@@ -40,10 +59,7 @@ VertexUncertainty EstimateUncertainty(const FlatSegment& flat, const Eigen::Matr
   const Eigen::Index n = flat.uv.rows();
   VertexUncertainty out;
   UncertaintyComponents& c = out.components;
-  // mm per flat unit: the flat map is near conformal, so one scale per segment.
-  const double area3 = surface::MixedVertexAreas(flat.position, flat.F).sum();
-  const double areaFlat = flattening::SignedFlatAreas(flat.uv, flat.F).cwiseAbs().sum();
-  const double scale = areaFlat > 0 ? std::sqrt(area3 / areaFlat) : 1.0;
+  const double scale = MmPerFlatUnit(flat);
   const auto distance = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
     return PeriodicDifference(a, b, flat.period).norm();
   };
@@ -92,6 +108,13 @@ VertexUncertainty EstimateUncertainty(const FlatSegment& flat, const Eigen::Matr
       kcount(flat.F(f, j)) += 1;
     }
   c.dilatation = (ksum.array() / kcount.array().max(1.0)).max(1.0);
+  // Distances to the segment's ends along v (mm): v is the along-colon coordinate.
+  const double vmin = flat.uv.col(1).minCoeff(), vmax = flat.uv.col(1).maxCoeff();
+  c.endMm[0] = (flat.uv.col(1).array() - vmin) * scale;
+  c.endMm[1] = (vmax - flat.uv.col(1).array()) * scale;
+  c.flexureMm = Eigen::VectorXd::Constant(n, kNoFlexureMm);
+  for (int e = 0; e < 2; ++e)
+    if (segment.flexureAtEnd[e]) c.flexureMm = c.flexureMm.cwiseMin(c.endMm[e]);
   c.loo.resize(n);
   c.nearMm.resize(n);
   c.correctionMm = h.rows() == n ? Eigen::VectorXd(h.rowwise().norm() * scale) : Eigen::VectorXd::Zero(n);
@@ -119,7 +142,7 @@ VertexUncertainty EstimateUncertainty(const FlatSegment& flat, const Eigen::Matr
   out.median.resize(n);
   out.bound90.resize(n);
   for (Eigen::Index i = 0; i < n; ++i) {
-    out.median(i) = UncertaintyMedian(c.loo(i), c.nearMm(i), c.correctionMm(i), c.dilatation(i), evidence);
+    out.median(i) = UncertaintyMedian(c.loo(i), c.nearMm(i), c.correctionMm(i), c.dilatation(i), c.flexureMm(i), evidence);
     out.bound90(i) = UncertaintyBound90(out.median(i));
   }
   return out;

@@ -13,18 +13,25 @@
 //   near(x):  distance (mm) from x to the nearest kept constraint.
 //   corr(x):  |h(x)| in mm, the size of the harmonic correction.
 //   K(x):     the map's dilatation (mean over the vertex's faces).
+//   flex(x):  distance (mm along the segment) to the nearest end that is a flexure. Both scans'
+//             segment ends are pinned to each other, so a flexure placed at slightly different
+//             anatomy in the two scans moves every point near it (issue 20: on real-colon pairs
+//             the errors above 20 mm lay within 50 mm of a flexure).
 //   segment:  the alignment's 1 - path correlation (the curvature images disagree), the fraction
-//             of matches the one-to-one guard dropped, matches per 100 mm of the segment.
-// Combined by a fixed model (coefficients in RegistrationUncertainty.cxx, fitted on the phantom:
-// see the README's ColonTransferPoints section for the data, the fit and the held-out figures):
-//   log sigma(x) = c0 + c1 log(1 + loo) + c2 log(1 + near / 10 mm) + c3 log(1 + corr)
-//                  + c4 log K + c5 (1 - pathCorrelation) + c6 dropped + c7 / (1 + matchesPer100mm),
-// sigma the predicted median error; a `quantile` bound is sigma * exp(z_q s) with s the spread of
-// the fit's log residuals (the 90% bound: uncertainty90). Eigen in and out.
+//             of matches the one-to-one guard dropped, matches per 100 mm of the segment, 1 - the
+//             curvature images' correlation at their best shift, |log| of the segment's length
+//             ratio between the scans.
+// Combined by a fixed log-linear model (UncertaintyFeatures; coefficients in
+// RegistrationUncertainty.cxx, fitted by scripts/fit_uncertainty.py on phantom and real-colon
+// pairs: docs/accuracy.md gives the data, the fit and the held-back figures):
+//   log sigma(x) = c . UncertaintyFeatures(x),
+// sigma the predicted median error; the 90% bound is sigma * exp(q90), q90 the 90% quantile of
+// the fit's log residuals (uncertainty90). Eigen in and out.
 #include "Registration/SurfaceMap.h"
 
 #include <Eigen/Core>
 
+#include <array>
 #include <vector>
 
 namespace colonmap::registration {
@@ -36,13 +43,21 @@ struct ConstraintPoint {
 };
 
 struct SegmentEvidence {
-  double pathCorrelation = 1.0;  // CurvatureWarp::pathCorrelation (1 when no warp)
-  double droppedFraction = 0.0;  // guard-dropped matches / matches before the guard
-  double matchesPer100mm = 0.0;  // kept matches per 100 mm of segment length (EstimateUncertainty sets it)
+  double pathCorrelation = 1.0;     // CurvatureWarp::pathCorrelation (1 when no warp)
+  double droppedFraction = 0.0;     // guard-dropped matches / matches before the guard
+  double matchesPer100mm = 0.0;     // kept matches per 100 mm of segment length (EstimateUncertainty sets it)
+  double curvatureAgreement = 1.0;  // correlation of the curvature images at their best shift (1 without images)
+  double lengthMismatch = 0.0;      // |log(supine length / prone length)| of the segment
+  std::array<bool, 2> flexureAtEnd{false, false};  // its v-min (anal) and v-max ends are flexures, not colon tips
 };
+
+// Distance used for "no flexure end" (a segment between the two tips of the colon).
+constexpr double kNoFlexureMm = 1000.0;
 
 struct UncertaintyComponents {
   Eigen::VectorXd loo, nearMm, correctionMm, dilatation;  // per vertex
+  Eigen::VectorXd endMm[2];  // distance along the segment (mm) to its v-min and its v-max end
+  Eigen::VectorXd flexureMm; // to the nearest end that is a flexure (kNoFlexureMm when none)
 };
 
 struct VertexUncertainty {
@@ -53,14 +68,29 @@ struct VertexUncertainty {
   double mmPerFlatUnit = 1.0;
 };
 
+// The segment's scale (mm per flat unit: the flat map is near conformal, so one per segment, from
+// the areas) and its length along v (mm).
+double MmPerFlatUnit(const FlatSegment& flat);
+double FlatLengthMm(const FlatSegment& flat);
+
 // flat: the supine segment (uv, F, position, period); h: n x 2 correction (zero rows when none);
 // K: per-face dilatation (m values, +inf allowed); constraints: the kept ones.
 VertexUncertainty EstimateUncertainty(const FlatSegment& flat, const Eigen::MatrixXd& h, const Eigen::VectorXd& K,
                                       const std::vector<ConstraintPoint>& constraints, const SegmentEvidence& segment,
                                       int neighbours = 6);
 
+// The model's inputs at one point, in the order of its coefficients (1 first): 1, log(1 + loo),
+// log(1 + near / 10 mm), log(1 + corr), log K (K >= 1, +inf as 10), 1 - pathCorrelation,
+// droppedFraction, 1 / (1 + matchesPer100mm), exp(-flex / 30 mm), 1 - curvatureAgreement,
+// lengthMismatch. scripts/fit_uncertainty.py computes the same.
+constexpr int kUncertaintyFeatures = 11;
+Eigen::Matrix<double, kUncertaintyFeatures, 1> UncertaintyFeatures(double loo, double nearMm, double correctionMm,
+                                                                   double dilatation, double flexureMm,
+                                                                   const SegmentEvidence& segment);
+
 // The model alone (for tests and for documenting it): sigma from the components of one point.
-double UncertaintyMedian(double loo, double nearMm, double correctionMm, double dilatation, const SegmentEvidence& segment);
+double UncertaintyMedian(double loo, double nearMm, double correctionMm, double dilatation, double flexureMm,
+                         const SegmentEvidence& segment);
 double UncertaintyBound90(double median);
 
 }  // namespace colonmap::registration

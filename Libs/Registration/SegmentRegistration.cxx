@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 namespace colonmap::registration {
 
@@ -209,6 +210,10 @@ SegmentRegistration RegisterSegment(const SegmentInput& supine, const SegmentInp
   evidence.pathCorrelation = r.warped ? r.warp.pathCorrelation : 1.0;
   evidence.droppedFraction =
       r.matchesBeforeGuard > 0 ? 1.0 - static_cast<double>(r.matches.size()) / r.matchesBeforeGuard : 0.0;
+  evidence.curvatureAgreement = supine.curvature && prone.curvature ? r.correlation.correlation : 1.0;
+  const double supineLength = FlatLengthMm(supine.flat), proneLength = FlatLengthMm(prone.flat);
+  evidence.lengthMismatch = supineLength > 0 && proneLength > 0 ? std::abs(std::log(supineLength / proneLength)) : 0.0;
+  evidence.flexureAtEnd = supine.flexureAtEnd;
   const Eigen::MatrixXd h = method == RegistrationMethod::Harmonic && r.correction.h.rows() == supine.flat.uv.rows()
                                 ? Eigen::MatrixXd(r.imageUV - etaUV)
                                 : Eigen::MatrixXd(Eigen::MatrixXd::Zero(supine.flat.uv.rows(), 2));

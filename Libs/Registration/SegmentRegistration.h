@@ -27,6 +27,7 @@
 #include "Registration/RegistrationUncertainty.h"
 #include "Registration/SurfaceMap.h"
 
+#include <array>
 #include <string>
 #include <utility>
 #include <vector>
@@ -53,6 +54,7 @@ struct SegmentInput {
   const Volume<float>* curvature = nullptr;  // curvature image (optional: no shift correlation)
   std::string cutTaenia;          // name of the cut taenia ("" unknown)
   Eigen::VectorXd meanCurvature;  // MeanCurvature per vertex (Harmonic method only)
+  std::array<bool, 2> flexureAtEnd{true, true};  // v-min (anal) and v-max ends are flexures, not colon tips
 };
 
 struct SegmentRegistration {

@@ -117,9 +117,11 @@ void Findings(const PipelineReportInput& in, HtmlReport& page) {
                            : std::string("-");
     };
     rows.push_back({f.value("label", std::string()), vec("supine"), vec("prone"), f.value("segment", std::string("-")),
-                    Num(f, "uncertaintyMm", 1), Num(f, "trueErrorMm", 1)});
+                    Num(f, "uncertaintyMm", 1),
+                    f.contains("reliable") ? (f["reliable"].get<bool>() ? "yes" : "NO: do not rely on this position") : "-",
+                    Num(f, "trueErrorMm", 1)});
   }
-  page.Table({"finding", "supine LPS mm", "prone LPS mm", "segment", "uncertainty mm", "true error mm"}, rows);
+  page.Table({"finding", "supine LPS mm", "prone LPS mm", "segment", "90% bound mm", "reliable", "true error mm"}, rows);
   const std::string views = Folder(in, "views");
   if (views.empty()) return;
   page.Heading("Linked endoluminal views");
@@ -147,14 +149,21 @@ void Segments(const PipelineReportInput& in, HtmlReport& page) {
                        : json();
     const json features = r.is_object() ? r.value("features", json()) : json();
     const json k3 = r.is_object() ? r.value("dilatation", json()) : json();
+    // Expected error (median of the model over the segment) and whether it is trusted, with why not.
+    std::string trusted = "-";
+    if (r.is_object() && r.contains("trusted")) {
+      trusted = r["trusted"].get<bool>() ? "yes" : "NO";
+      for (const auto& why : r.value("untrustedBecause", json::array())) trusted += ": " + why.get<std::string>();
+    }
     rows.push_back({std::string(seg) + " (" + kSegmentNames[k] + ")", Num(a, "lengthMm", 0), Num(b, "lengthMm", 0),
                     Num(a, "faces", 0), Num(b, "faces", 0),
                     Num(fa.is_object() ? fa.value("beltramiAbs", json()) : json(), "mean", 3),
                     Num(fb.is_object() ? fb.value("beltramiAbs", json()) : json(), "mean", 3),
-                    Num(features, "matched", 0), Num(k3, "mean", 2), Num(k3, "p99", 2)});
+                    Num(features, "matched", 0), Num(k3, "mean", 2), Num(k3, "p99", 2), Num(r, "expectedErrorMm", 1),
+                    trusted});
   }
   page.Table({"segment", "length supine mm", "length prone mm", "faces supine", "faces prone", "mean |mu| supine",
-              "mean |mu| prone", "features matched", "mean K", "p99 K"},
+              "mean |mu| prone", "features matched", "mean K", "p99 K", "expected error mm", "trusted"},
              rows);
 }
 

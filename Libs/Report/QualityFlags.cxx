@@ -90,7 +90,7 @@ void LengthFlag(const StageSummaries& s, const QualityThresholds& t, std::vector
 void JointFlexureFlag(const StageSummaries& s, const QualityThresholds& t, std::vector<QualityFlag>& flags) {
   if (s.landmarks[0].is_null()) return;
   const json joint = s.landmarks[0].value("jointChoice", json());
-  if (!joint.is_object()) return;
+  if (!joint.is_object() || joint.value("pairedWith", std::string()).empty()) return;  // one scan alone
   QualityFlag f{"Flexures chosen jointly", true, ""};
   const bool consistent = joint.value("consistent", false), fallback = joint.value("fallback", false);
   const double cost = Number(joint, "alignmentCost", 1.0);

@@ -104,4 +104,6 @@ TEST(QualityFlags, JointFlexuresAreTrustedOnlyWithAnOrderedChoiceAndAGoodAlignme
   // A single-scan landmark run has no joint choice and no such flag.
   s.landmarks[0].erase("jointChoice");
   EXPECT_THROW(Find(AssessQuality(s), "Flexures chosen jointly"), std::runtime_error);
+  s.landmarks[0]["jointChoice"] = json{{"pairedWith", ""}, {"consistent", true}, {"fallback", false}};
+  EXPECT_THROW(Find(AssessQuality(s), "Flexures chosen jointly"), std::runtime_error);
 }

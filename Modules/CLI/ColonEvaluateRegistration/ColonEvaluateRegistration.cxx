@@ -28,6 +28,7 @@ constexpr const char* kNames[5] = {"A", "T", "D", "S", "R"};
 
 struct Group {
   std::vector<double> e3, flat, roundTrip, uncertainty;
+  std::vector<bool> reliable;
 };
 
 json Summary(const std::vector<double>& e) {
@@ -129,13 +130,15 @@ void Run(cli::ModuleContext& ctx) {
       if (seg.empty() && t.segment >= 0 && t.segment < 5) seg = kNames[t.segment];
       json row = {{"label", c.label}, {"group", polyps ? "polyps" : seg}, {"error3D", e3}, {"errorFlat", ef},
                   {"roundTrip", rt}, {"uncertainty", t.uncertaintyMm}, {"uncertaintyMedian", t.uncertaintyMedianMm},
-                  {"offset", t.offset}, {"dilatation", t.dilatation},
+                  {"offset", t.offset}, {"dilatation", t.dilatation}, {"reliable", t.reliable},
                   {"mappedFlat", {flatMapped.x(), flatMapped.y()}}, {"trueFlat", {flatTrue.x(), flatTrue.y()}}};
       // The uncertainty's components where the registration has them (for calibration studies).
-      for (const char* a : {"UncertaintyLoo", "UncertaintyNearMm", "UncertaintyCorrectionMm"}) {
+      for (const char* a : {"UncertaintyLoo", "UncertaintyNearMm", "UncertaintyCorrectionMm", "UncertaintyDilatation",
+                            "UncertaintyFlexureMm"}) {
         const double v = forward.SourceValue(a, t);
         if (std::isfinite(v)) row[a] = v;
       }
+      if (t.segment >= 0 && t.segment < 5) row["mapSegment"] = kNames[t.segment];  // the registration's segment at the foot
       perPoint.push_back(row);
       for (const std::string& g : polyps ? std::vector<std::string>{"polyps"} : std::vector<std::string>{"all", seg}) {
         if (g.empty()) continue;
@@ -144,6 +147,7 @@ void Run(cli::ModuleContext& ctx) {
         G.flat.push_back(ef);
         G.roundTrip.push_back(rt);
         G.uncertainty.push_back(t.uncertaintyMm);
+        G.reliable.push_back(t.reliable);
       }
       if ((i & 63) == 0) ctx.progress.Report(static_cast<double>(i) / std::max<std::size_t>(1, s.points.size()));
     }
@@ -164,14 +168,27 @@ void Run(cli::ModuleContext& ctx) {
                   a.median, a.p90, a.max, f.mean, f.median, f.p90, f.max, r.mean);
     tsv << b;
     // uncertainty is ColonTransferPoints' 90% bound: coverage should be about 0.9.
-    long covered = 0;
-    for (std::size_t i = 0; i < g.e3.size(); ++i) covered += g.e3[i] <= g.uncertainty[i];
+    // Of the points more than 20 mm off, the share the output warns about (a bound above 20 mm
+    // or reliable=false): a large error must not come with a small promise.
+    long covered = 0, large = 0, largeWarned = 0, unreliable = 0;
+    for (std::size_t i = 0; i < g.e3.size(); ++i) {
+      covered += g.e3[i] <= g.uncertainty[i];
+      unreliable += !g.reliable[i];
+      if (g.e3[i] > 20.0) {
+        ++large;
+        largeWarned += g.uncertainty[i] > 20.0 || !g.reliable[i];
+      }
+    }
+    const double n = std::max<double>(1.0, static_cast<double>(g.e3.size()));
     return json{{"error3D", Summary(g.e3)},
                 {"errorFlat", Summary(g.flat)},
                 {"roundTrip", Summary(g.roundTrip)},
                 {"uncertainty", {{"mean", SummarizeErrors(g.uncertainty).mean},
                                  {"coverage", g.e3.empty() ? 0.0 : static_cast<double>(covered) / g.e3.size()},
-                                 {"correlationWithError", Correlation(g.uncertainty, g.e3)}}}};
+                                 {"correlationWithError", Correlation(g.uncertainty, g.e3)},
+                                 {"unreliableFraction", static_cast<double>(unreliable) / n},
+                                 {"above20mm", large},
+                                 {"above20mmWarned", largeWarned}}}};
   };
   for (const char* X : kNames)
     if (groups.count(X)) segs[X] = row(X, groups[X]);

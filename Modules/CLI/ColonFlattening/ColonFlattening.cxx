@@ -274,6 +274,17 @@ void Run(cli::ModuleContext& ctx) {
   report["mmPerPixel"] = mmPerPixel;
   report["subdivisions"] = subdivisions;
   report["flippedTriangles"] = flippedTotal;
+  // The landmarks' joint flexure choice, handed on: the registration must know when the segments
+  // are the alignment's guess rather than both scans' anatomy (issue 20).
+  if (const fs::path lj = fs::path(in) / "landmarks.json"; fs::exists(lj)) {
+    std::ifstream f(lj);
+    const json l = json::parse(f, nullptr, false);
+    if (!l.is_discarded() && l.contains("jointChoice") && l["jointChoice"].is_object()) {
+      const json& j = l["jointChoice"];
+      report["jointChoice"] = {{"pairedWith", j.value("pairedWith", "")}, {"consistent", j.value("consistent", true)},
+                               {"fallback", j.value("fallback", false)}};
+    }
+  }
   {
     const std::string p = ctx.outputs.Stage((fs::path(out) / "flattening.json").string(), "output flattening.json");
     std::ofstream f(p);

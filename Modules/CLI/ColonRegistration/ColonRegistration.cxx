@@ -8,10 +8,12 @@
 #include "IO/MarkupsIO.h"
 #include "IO/MeshIO.h"
 #include "Registration/FlatLocator.h"
+#include "Registration/RegistrationReliability.h"
 #include "Registration/SegmentRegistration.h"
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -50,6 +52,8 @@ ScanSegment ReadSegment(const fs::path& dir, int id, const json& report, const s
   s.input.flat.position = Need(s.flat, "Position3D", 3, what, path).values;
   s.input.flat.F = s.flat.F;
   s.input.flat.period = FlatPeriodFromCut(s.input.flat.uv, s.input.flat.position);
+  // v runs from the anal end: A's far end is the caecum, R's near end the anus (tips, not flexures).
+  s.input.flexureAtEnd = {id != 4, id != 0};
   if (report.contains("segments") && report["segments"].contains(X)) {
     const json& j = report["segments"][X];
     if (j.contains("flatWidth") && j["flatWidth"].is_number()) s.input.flat.period = j["flatWidth"].get<double>();
@@ -66,6 +70,16 @@ ScanSegment ReadSegment(const fs::path& dir, int id, const json& report, const s
     s.input.curvature = &*s.curvature;
   }
   return s;
+}
+
+// Whether the scan's flexures were chosen jointly with the other scan: ColonLandmarks records
+// its choice (jointChoice, handed on by flattening.json; pairedWith empty when the scan was done
+// alone). Without the record (segments made by other means, e.g. cut from a phantom's truth)
+// nothing is known against them.
+bool FlexuresJoint(const json& report) {
+  if (!report.contains("jointChoice") || !report["jointChoice"].is_object()) return true;
+  const json& j = report["jointChoice"];
+  return !j.value("pairedWith", std::string()).empty() && j.value("consistent", true) && !j.value("fallback", false);
 }
 
 json ReadReport(const fs::path& dir, const std::string& scan) {
@@ -171,6 +185,8 @@ void Run(cli::ModuleContext& ctx) {
 
   std::vector<TriangleMesh> supineParts, proneParts;
   std::vector<SegmentRegistration> regs;
+  std::vector<Eigen::MatrixXi> supineFaces;
+  const bool flexuresJoint = FlexuresJoint(sreport) && FlexuresJoint(preport);
   json segments;
   long flips = 0;
   MarkupList supineFeatures, proneFeatures;
@@ -207,7 +223,8 @@ void Run(cli::ModuleContext& ctx) {
     const VertexUncertainty& U = r.uncertainty;
     const std::pair<const char*, const Eigen::VectorXd*> uarrays[] = {
         {"Uncertainty", &U.median}, {"Uncertainty90", &U.bound90}, {"UncertaintyLoo", &U.components.loo},
-        {"UncertaintyNearMm", &U.components.nearMm}, {"UncertaintyCorrectionMm", &U.components.correctionMm}};
+        {"UncertaintyNearMm", &U.components.nearMm}, {"UncertaintyCorrectionMm", &U.components.correctionMm},
+        {"UncertaintyDilatation", &U.components.dilatation}, {"UncertaintyFlexureMm", &U.components.flexureMm}};
     for (const auto& [name, values] : uarrays) {
       sp.pointData[name] = DataArray{*values, false};
       pp.pointData[name] = DataArray{Interpolate(r.inverse, s.flat.F, *values), false};
@@ -248,7 +265,8 @@ void Run(cli::ModuleContext& ctx) {
                         {"pathCorrelation", r.warp.pathCorrelation}, {"affineCorrelation", r.warp.affineCorrelation},
                         {"rows", r.warp.rows}};
     j["uncertainty"] = {{"pathCorrelation", U.segment.pathCorrelation}, {"droppedFraction", U.segment.droppedFraction},
-                        {"matchesPer100mm", U.segment.matchesPer100mm}, {"mmPerFlatUnit", U.mmPerFlatUnit},
+                        {"matchesPer100mm", U.segment.matchesPer100mm}, {"curvatureAgreement", U.segment.curvatureAgreement},
+                        {"lengthMismatch", U.segment.lengthMismatch}, {"mmPerFlatUnit", U.mmPerFlatUnit},
                         {"medianOfVertices", U.median.size() ? [&] {
                            std::vector<double> v(U.median.data(), U.median.data() + U.median.size());
                            std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
@@ -288,7 +306,44 @@ void Run(cli::ModuleContext& ctx) {
                       cli::FormatNumber(r.correlation.shift) + "), scale " + cli::FormatNumber(r.eta.scale) + ", flips " +
                       std::to_string(r.flatFlips) + "/" + std::to_string(r.surfaceFlips) + ", K mean " +
                       cli::FormatNumber(K.mean()) + "; times: " + steps);
+    regs.push_back(std::move(r));
+    supineFaces.push_back(s.flat.F);
     ctx.progress.EndStage();
+  }
+
+  // Trust per segment, then per vertex (RegistrationReliability.h): an untrusted segment makes
+  // the flexures at its ends suspect for its neighbours.
+  std::vector<SegmentTrust> trust;
+  for (const SegmentRegistration& r : regs) trust.push_back(JudgeSegment(r.uncertainty.segment, flexuresJoint));
+  const auto untrustedId = [&](int id) {
+    const auto it = std::find(present.begin(), present.end(), id);
+    return it != present.end() && !trust[it - present.begin()].trusted;
+  };
+  std::string untrusted;
+  for (std::size_t k = 0; k < present.size(); ++k) {
+    const int id = present[k];
+    const std::string X = kNames[id];
+    const SegmentRegistration& r = regs[k];
+    // The v-min end borders the next segment towards the anus (id + 1), the v-max end the previous.
+    const std::array<bool, 2> endSuspect = {r.uncertainty.segment.flexureAtEnd[0] && untrustedId(id + 1),
+                                            r.uncertainty.segment.flexureAtEnd[1] && untrustedId(id - 1)};
+    const Eigen::VectorXd reliable = ReliableVertices(r.uncertainty.components, trust[k].trusted, endSuspect);
+    supineParts[k].pointData["Reliable"] = DataArray{reliable, true};
+    // Prone vertices: reliable where the supine point they come from is (nearest of the three).
+    const Eigen::VectorXd proneReliable =
+        Interpolate(r.inverse, supineFaces[k], reliable).col(0).unaryExpr([](double x) { return x >= 0.5 ? 1.0 : 0.0; });
+    proneParts[k].pointData["Reliable"] = DataArray{proneReliable, true};
+    json& j = segments[X];
+    j["trusted"] = trust[k].trusted;
+    j["untrustedBecause"] = trust[k].reasons;
+    j["reliableFraction"] = reliable.size() ? reliable.mean() : 0.0;
+    j["expectedErrorMm"] = j["uncertainty"]["medianOfVertices"];
+    if (!trust[k].trusted) {
+      untrusted += (untrusted.empty() ? "" : ",") + X;
+      std::string why;
+      for (const std::string& reason : trust[k].reasons) why += (why.empty() ? "" : "; ") + reason;
+      ctx.progress.Note("ColonRegistration: WARNING: segment " + X + " cannot be trusted (" + why + "): its points are marked reliable=false");
+    }
   }
 
   ctx.progress.StartStage("Write", "writing the registration");
@@ -316,6 +371,8 @@ void Run(cli::ModuleContext& ctx) {
   report["flippedTriangles"] = flips;
   report["supine"] = fs::path(sdir).filename().string();
   report["meanDilatation"] = K.mean();
+  report["flexuresJoint"] = flexuresJoint;
+  report["untrustedSegments"] = untrusted;
   if (method == RegistrationMethod::Harmonic) {
     io::WriteMarkups(supineFeatures, ctx.outputs.Stage((fs::path(out) / "supine_features.mrk.json").string(), "output supine_features.mrk.json"),
                      "supine features");
@@ -334,6 +391,7 @@ void Run(cli::ModuleContext& ctx) {
   ctx.SetReturn("segments", std::to_string(present.size()));
   ctx.SetReturn("flippedTriangles", std::to_string(flips));
   ctx.SetReturn("meanDilatation", cli::FormatNumber(K.mean()));
+  ctx.SetReturn("untrustedSegments", untrusted);
 }
 
 }  // namespace

@@ -107,6 +107,8 @@ json FindingsTable(const MarkupList& supine, const MarkupList& prone, const Mark
              {"segment", DescriptionField(p.description, "segment")}};
     const std::string u = DescriptionField(p.description, "uncertaintyMm");
     if (!u.empty()) row["uncertaintyMm"] = std::stod(u);
+    const std::string r = DescriptionField(p.description, "reliable");
+    if (!r.empty()) row["reliable"] = r == "true";
     if (truth)
       for (const auto& t : truth->points)
         if (t.label == s.label) row["trueErrorMm"] = (t.position - p.position).norm();

@@ -41,11 +41,14 @@ void Run(cli::ModuleContext& ctx) {
   MarkupList result = points;
   result.name = points.name.empty() ? std::string(toProne ? "Prone" : "Supine") : points.name;
   double sum = 0;
+  long unreliable = 0;
   for (std::size_t i = 0; i < points.points.size(); ++i) {
     const TransferredPoint t = transfer.Transfer(points.points[i].position);
     ControlPoint& c = result.points[i];
     c.position = t.position;
-    std::string d = "uncertaintyMm=" + Fixed(t.uncertaintyMm, 2);
+    // reliable=false: the registration cannot be trusted here, whatever the bound says.
+    std::string d = "uncertaintyMm=" + Fixed(t.uncertaintyMm, 2) + " reliable=" + (t.reliable ? "true" : "false");
+    unreliable += !t.reliable;
     if (t.segment >= 0 && t.segment < 5) d += std::string(" segment=") + kNames[t.segment];
     d += " offsetMm=" + Fixed(t.offset, 2) + " dilatation=" + Fixed(t.dilatation, 3);
     if (!points.points[i].description.empty()) d += " source: " + points.points[i].description;
@@ -58,6 +61,10 @@ void Run(cli::ModuleContext& ctx) {
   io::WriteMarkups(result, ctx.outputs.Stage(out, "output points"), "output points");
   ctx.progress.EndStage();
   ctx.SetReturn("points", std::to_string(points.points.size()));
+  if (unreliable > 0)
+    ctx.progress.Note("ColonTransferPoints: WARNING: " + std::to_string(unreliable) +
+                      " point(s) lie where the registration cannot be trusted (reliable=false in their description)");
+  ctx.SetReturn("unreliablePoints", std::to_string(unreliable));
   ctx.SetReturn("meanUncertainty", cli::FormatNumber(points.points.empty() ? 0.0 : sum / points.points.size()));
 }
 

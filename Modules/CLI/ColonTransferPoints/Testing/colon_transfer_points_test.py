@@ -83,6 +83,7 @@ try:
     for l, p, d in mapped:
         m = re.search(r"uncertaintyMm=([0-9.]+)", d)
         check(m is not None, f"{l}: no uncertainty in '{d}'")
+        check(re.search(r" reliable=(true|false) ", d) is not None, f"{l}: no reliable= in '{d}'")
         errs.append(math.dist(p, truth[l]))
         unc.append(float(m.group(1)) if m else 0.0)
     covered = sum(e <= u for e, u in zip(errs, unc)) / len(errs)

@@ -1,0 +1,202 @@
+#!/usr/bin/env python3
+"""Fits the registration uncertainty model (Libs/Registration/RegistrationUncertainty.h) on pairs with
+ground truth and says how it holds on pairs it was not fitted on (issue 20). A benchmark, not a test.
+
+    fit_uncertainty.py --pool NAME=CACHE[:RUNS] [--pool ...] [--output fit.json]
+
+Each pool is a registration_seeds.py cache (CACHE/seed<N>/RUNS/harmonic/{errors.json,registration.json} or,
+with its --work CACHE/RUNS, CACHE/RUNS/seed<N>/harmonic; RUNS defaults to "runs"), e.g. phantom0.5=/tmp/ph3 gca=/tmp/rc-gca-00020:runs2. The model is
+log sigma = c . x with x = UncertaintyFeatures (the same 11 inputs as the C++), fitted by least squares
+of log(max(true error, 0.2 mm)) on the evaluation wall points and polyps, coefficients but the intercept
+kept >= 0; the 90% bound is sigma * exp(q90) with
+q90 the 90% quantile of the fit's log residuals.
+
+Held back, two ways (no pair is ever in the fit that reports on it):
+  seeds:   fit on the odd seeds of every pool, report on the even ones, and the other way round;
+  sources: fit on all but one source (tube = the phantom pools; each real colon), report on it.
+Per held-back pair: coverage of the 90% bound on wall points; pooled: polyps' coverage, Pearson of the
+bound with the true error, and of the points more than 20 mm off the share with a bound above 20 mm or
+reliable=false (the reliability flag comes from the registration itself, not from this fit).
+The final coefficients are fitted on all pairs; paste them into RegistrationUncertainty.cxx.
+"""
+import argparse
+import glob
+import json
+import math
+import os
+import re
+import statistics
+
+FEATURES = ["1", "log1p(loo)", "log1p(near/10)", "log1p(corr)", "log K", "1-pathCorrelation", "droppedFraction",
+            "1/(1+matchesPer100mm)", "exp(-flex/30)", "1-curvatureAgreement", "lengthMismatch"]
+SOURCE = {"phantom": "tube"}  # pools whose name starts with "phantom" are one source
+
+
+def features(p, seg):
+    K = p.get("UncertaintyDilatation", p.get("dilatation", 1.0))
+    K = max(1.0, K) if math.isfinite(K) else 10.0
+    return [1.0, math.log1p(max(0.0, p["UncertaintyLoo"])), math.log1p(max(0.0, p["UncertaintyNearMm"]) / 10.0),
+            math.log1p(max(0.0, p["UncertaintyCorrectionMm"])), math.log(K), 1.0 - seg["pathCorrelation"],
+            seg["droppedFraction"], 1.0 / (1.0 + seg["matchesPer100mm"]),
+            math.exp(-max(0.0, p.get("UncertaintyFlexureMm", 1000.0)) / 30.0), 1.0 - seg.get("curvatureAgreement", 1.0),
+            seg.get("lengthMismatch", 0.0)]
+
+
+def load(pools):
+    points = []
+    for name, spec in pools:
+        cache, _, runs = spec.partition(":")
+        runs = runs or "runs"
+        for folder in sorted(glob.glob(os.path.join(cache, "seed*"))):
+            # CACHE/seed<N>/RUNS (registration_seeds.py's default) or CACHE/RUNS/seed<N> (its --work RUNS)
+            run = os.path.join(folder, runs, "harmonic")
+            if not os.path.exists(run):
+                run = os.path.join(cache, runs, os.path.basename(folder), "harmonic")
+            ev = os.path.join(run, "errors.json")
+            if not os.path.exists(ev):
+                continue
+            reg = json.load(open(os.path.join(run, "registration.json")))["segments"]
+            seed = int(re.search(r"seed(\d+)$", folder).group(1))
+            for p in json.load(open(ev))["points"]:
+                seg = reg.get(p.get("mapSegment", p["group"]))
+                if seg is None or "UncertaintyLoo" not in p:
+                    continue
+                points.append({"pool": name, "source": "tube" if name.startswith("phantom") else name, "seed": seed,
+                               "pair": f"{name}/seed{seed}", "polyp": p["group"] == "polyps", "error": p["error3D"],
+                               "x": features(p, seg["uncertainty"]), "reliable": p.get("reliable", True),
+                               "offset": p.get("offset", 0.0), "bound": p["uncertainty"]})
+    return points
+
+
+def solve(A, b):
+    """Gaussian elimination with partial pivoting (A n x n)."""
+    n = len(A)
+    M = [row[:] + [b[i]] for i, row in enumerate(A)]
+    for c in range(n):
+        r = max(range(c, n), key=lambda k: abs(M[k][c]))
+        M[c], M[r] = M[r], M[c]
+        if abs(M[c][c]) < 1e-12:
+            M[c][c] = 1e-12
+        for k in range(c + 1, n):
+            f = M[k][c] / M[c][c]
+            for j in range(c, n + 1):
+                M[k][j] -= f * M[c][j]
+    x = [0.0] * n
+    for c in range(n - 1, -1, -1):
+        x[c] = (M[c][n] - sum(M[c][j] * x[j] for j in range(c + 1, n))) / M[c][c]
+    return x
+
+
+def quantile(v, q):
+    v = sorted(v)
+    return v[min(len(v) - 1, max(0, int(math.ceil(q * len(v))) - 1))]
+
+
+def fit(points, ridge=1e-3):
+    """Least squares on wall points and polyps (the findings a reader carries), every coefficient but
+    the intercept kept >= 0 (each input is built so that more of it means less evidence: a signal
+    must never narrow the bound), by dropping the most negative one and refitting."""
+    rows = [p for p in points]
+    n = len(FEATURES)
+    active = list(range(n))
+    while True:
+        A = [[0.0] * len(active) for _ in active]
+        b = [0.0] * len(active)
+        for p in rows:
+            y = math.log(max(p["error"], 0.2))
+            x = [p["x"][i] for i in active]
+            for i in range(len(active)):
+                b[i] += x[i] * y
+                for j in range(len(active)):
+                    A[i][j] += x[i] * x[j]
+        for i in range(1, len(active)):
+            A[i][i] += ridge * len(rows)
+        sol = solve(A, b)
+        worst = min(range(1, len(active)), key=lambda i: sol[i], default=None)
+        if worst is None or sol[worst] >= 0.0:
+            break
+        del active[worst]
+    c = [0.0] * n
+    for i, v in zip(active, sol):
+        c[i] = v
+    residuals = [math.log(max(p["error"], 0.2)) - sum(ci * xi for ci, xi in zip(c, p["x"])) for p in rows]
+    return {"coefficients": c, "q90": quantile(residuals, 0.9), "points": len(rows)}
+
+
+def bound(model, p):
+    median = math.exp(sum(ci * xi for ci, xi in zip(model["coefficients"], p["x"])))
+    b90 = median * math.exp(model["q90"])
+    return math.sqrt(b90 * b90 + 0.25 * p["offset"] ** 2)  # PointTransfer's re-attachment term
+
+
+def pearson(a, b):
+    ma, mb = statistics.fmean(a), statistics.fmean(b)
+    sa = math.sqrt(sum((x - ma) ** 2 for x in a))
+    sb = math.sqrt(sum((y - mb) ** 2 for y in b))
+    return sum((x - ma) * (y - mb) for x, y in zip(a, b)) / (sa * sb) if sa > 0 and sb > 0 else None
+
+
+def report(held):
+    """held: (point, bound) pairs of held-back points."""
+    pairs = {}
+    for p, b in held:
+        if not p["polyp"]:
+            pairs.setdefault(p["pair"], []).append(p["error"] <= b)
+    wall = [(p, b) for p, b in held if not p["polyp"]]
+    polyps = [(p, b) for p, b in held if p["polyp"]]
+    large = [(p, b) for p, b in wall if p["error"] > 20.0]
+    coverage = {k: round(sum(v) / len(v), 3) for k, v in sorted(pairs.items())}
+    return {"coveragePerPair": coverage,
+            "pairsWithin85to95": sum(0.85 <= c <= 0.95 for c in coverage.values()), "pairs": len(coverage),
+            "coverageMin": min(coverage.values()), "coverageMax": max(coverage.values()),
+            "wallCoverage": round(sum(p["error"] <= b for p, b in wall) / len(wall), 3),
+            "polypCoverage": round(sum(p["error"] <= b for p, b in polyps) / len(polyps), 3) if polyps else None,
+            "pearson": round(pearson([b for _, b in wall], [p["error"] for p, _ in wall]), 3),
+            "above20mm": len(large),
+            "above20mmWarned": sum(b > 20.0 or not p["reliable"] for p, b in large),
+            "above20mmUnreliable": sum(not p["reliable"] for p, _ in large),
+            "unreliableFraction": round(sum(not p["reliable"] for p, _ in wall) / len(wall), 3)}
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--pool", action="append", required=True, help="NAME=CACHE[:RUNS]")
+    ap.add_argument("--output", default=None)
+    a = ap.parse_args()
+    points = load([tuple(s.split("=", 1)) for s in a.pool])
+    out = {"features": FEATURES, "pools": a.pool}
+    # Held back by seed parity.
+    held = []
+    for parity in (1, 0):
+        m = fit([p for p in points if p["seed"] % 2 == parity])
+        held += [(p, bound(m, p)) for p in points if p["seed"] % 2 != parity]
+    out["heldBackSeeds"] = report(held)
+    # Held back by source.
+    out["heldBackSources"] = {}
+    for s in sorted({p["source"] for p in points}):
+        m = fit([p for p in points if p["source"] != s])
+        out["heldBackSources"][s] = report([(p, bound(m, p)) for p in points if p["source"] == s])
+    # The current model, as the registration wrote it (for comparison).
+    out["asWritten"] = report([(p, p["bound"]) for p in points])
+    final = fit(points)
+    out["final"] = {"coefficients": [round(c, 4) for c in final["coefficients"]], "q90": round(final["q90"], 4),
+                    "points": final["points"], "onItsOwnFit": report([(p, bound(final, p)) for p in points])}
+    text = json.dumps(out, indent=1)
+    if a.output:
+        open(a.output, "w").write(text + "\n")
+    for k in ("heldBackSeeds", "asWritten"):
+        r = out[k]
+        print(f"{k}: pairs in 85-95% {r['pairsWithin85to95']}/{r['pairs']} (min {r['coverageMin']}, max {r['coverageMax']}), "
+              f"wall {r['wallCoverage']}, polyps {r['polypCoverage']}, r {r['pearson']}, "
+              f">20 mm warned {r['above20mmWarned']}/{r['above20mm']} (unreliable {r['above20mmUnreliable']}), "
+              f"unreliable {r['unreliableFraction']}")
+    for s, r in out["heldBackSources"].items():
+        print(f"  held-back source {s}: pairs in 85-95% {r['pairsWithin85to95']}/{r['pairs']} (min {r['coverageMin']}, "
+              f"max {r['coverageMax']}), wall {r['wallCoverage']}, polyps {r['polypCoverage']}, r {r['pearson']}, "
+              f">20 warned {r['above20mmWarned']}/{r['above20mm']}")
+    print("final: constexpr double kC[kUncertaintyFeatures] = {" + ", ".join(f"{c:.4f}" for c in out["final"]["coefficients"]) +
+          "};  kLogQ90 = " + f"{out['final']['q90']:.4f}")
+
+
+if __name__ == "__main__":
+    main()
