@@ -16,7 +16,8 @@ Held back, two ways (no pair is ever in the fit that reports on it):
   sources: fit on all but one source (tube = the phantom pools; each real colon), report on it.
 Per held-back pair: coverage of the 90% bound on wall points; pooled: polyps' coverage, Pearson of the
 bound with the true error, and of the points more than 20 mm off the share with a bound above 20 mm or
-reliable=false (the reliability flag comes from the registration itself, not from this fit).
+reliable=false (reliable = the registration's own Trusted flag and the held-back bound within
+--reliable-bound, as ColonRegistration --reliableBoundMm makes it).
 The final coefficients are fitted on all pairs; paste them into RegistrationUncertainty.cxx.
 """
 import argparse
@@ -64,6 +65,7 @@ def load(pools):
                 points.append({"pool": name, "source": "tube" if name.startswith("phantom") else name, "seed": seed,
                                "pair": f"{name}/seed{seed}", "polyp": p["group"] == "polyps", "error": p["error3D"],
                                "x": features(p, seg["uncertainty"]), "reliable": p.get("reliable", True),
+                               "trusted": p.get("trusted", p.get("reliable", True)),
                                "offset": p.get("offset", 0.0), "bound": p["uncertainty"]})
     return points
 
@@ -136,32 +138,42 @@ def pearson(a, b):
     return sum((x - ma) * (y - mb) for x, y in zip(a, b)) / (sa * sb) if sa > 0 and sb > 0 else None
 
 
+def held_back(model, p, reliable_bound):
+    """(point, bound, reliable) as the registration would write them with this model."""
+    b = bound(model, p)
+    return p, b, p["trusted"] and b <= reliable_bound
+
+
 def report(held):
-    """held: (point, bound) pairs of held-back points."""
+    """held: (point, bound, reliable) of held-back points."""
     pairs = {}
-    for p, b in held:
+    for p, b, _ in held:
         if not p["polyp"]:
             pairs.setdefault(p["pair"], []).append(p["error"] <= b)
-    wall = [(p, b) for p, b in held if not p["polyp"]]
-    polyps = [(p, b) for p, b in held if p["polyp"]]
-    large = [(p, b) for p, b in wall if p["error"] > 20.0]
+    wall = [(p, b, r) for p, b, r in held if not p["polyp"]]
+    polyps = [(p, b, r) for p, b, r in held if p["polyp"]]
+    large = [(p, b, r) for p, b, r in wall if p["error"] > 20.0]
     coverage = {k: round(sum(v) / len(v), 3) for k, v in sorted(pairs.items())}
     return {"coveragePerPair": coverage,
             "pairsWithin85to95": sum(0.85 <= c <= 0.95 for c in coverage.values()), "pairs": len(coverage),
             "coverageMin": min(coverage.values()), "coverageMax": max(coverage.values()),
-            "wallCoverage": round(sum(p["error"] <= b for p, b in wall) / len(wall), 3),
-            "polypCoverage": round(sum(p["error"] <= b for p, b in polyps) / len(polyps), 3) if polyps else None,
-            "pearson": round(pearson([b for _, b in wall], [p["error"] for p, _ in wall]), 3),
+            "wallCoverage": round(sum(p["error"] <= b for p, b, _ in wall) / len(wall), 3),
+            "polypCoverage": round(sum(p["error"] <= b for p, b, _ in polyps) / len(polyps), 3) if polyps else None,
+            "pearson": round(pearson([b for _, b, _ in wall], [p["error"] for p, _, _ in wall]), 3),
             "above20mm": len(large),
-            "above20mmWarned": sum(b > 20.0 or not p["reliable"] for p, b in large),
-            "above20mmUnreliable": sum(not p["reliable"] for p, _ in large),
-            "unreliableFraction": round(sum(not p["reliable"] for p, _ in wall) / len(wall), 3)}
+            "above20mmWarned": sum(b > 20.0 or not r for _, b, r in large),
+            "above20mmUnreliable": sum(not r for _, _, r in large),
+            "above20mmUntrusted": sum(not p["trusted"] for p, _, _ in large),
+            "unreliableFraction": round(sum(not r for _, _, r in wall) / len(wall), 3),
+            "untrustedFraction": round(sum(not p["trusted"] for p, _, _ in wall) / len(wall), 3)}
 
 
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--pool", action="append", required=True, help="NAME=CACHE[:RUNS]")
     ap.add_argument("--output", default=None)
+    ap.add_argument("--reliable-bound", type=float, default=10.0,
+                    help="ColonRegistration --reliableBoundMm: reliable = trusted and bound <= this (mm)")
     a = ap.parse_args()
     points = load([tuple(s.split("=", 1)) for s in a.pool])
     out = {"features": FEATURES, "pools": a.pool}
@@ -169,18 +181,19 @@ def main():
     held = []
     for parity in (1, 0):
         m = fit([p for p in points if p["seed"] % 2 == parity])
-        held += [(p, bound(m, p)) for p in points if p["seed"] % 2 != parity]
+        held += [held_back(m, p, a.reliable_bound) for p in points if p["seed"] % 2 != parity]
     out["heldBackSeeds"] = report(held)
     # Held back by source.
     out["heldBackSources"] = {}
     for s in sorted({p["source"] for p in points}):
         m = fit([p for p in points if p["source"] != s])
-        out["heldBackSources"][s] = report([(p, bound(m, p)) for p in points if p["source"] == s])
+        out["heldBackSources"][s] = report([held_back(m, p, a.reliable_bound) for p in points if p["source"] == s])
     # The current model, as the registration wrote it (for comparison).
-    out["asWritten"] = report([(p, p["bound"]) for p in points])
+    out["asWritten"] = report([(p, p["bound"], p["reliable"]) for p in points])
     final = fit(points)
     out["final"] = {"coefficients": [round(c, 4) for c in final["coefficients"]], "q90": round(final["q90"], 4),
-                    "points": final["points"], "onItsOwnFit": report([(p, bound(final, p)) for p in points])}
+                    "points": final["points"],
+                    "onItsOwnFit": report([held_back(final, p, a.reliable_bound) for p in points])}
     text = json.dumps(out, indent=1)
     if a.output:
         open(a.output, "w").write(text + "\n")
@@ -188,12 +201,12 @@ def main():
         r = out[k]
         print(f"{k}: pairs in 85-95% {r['pairsWithin85to95']}/{r['pairs']} (min {r['coverageMin']}, max {r['coverageMax']}), "
               f"wall {r['wallCoverage']}, polyps {r['polypCoverage']}, r {r['pearson']}, "
-              f">20 mm warned {r['above20mmWarned']}/{r['above20mm']} (unreliable {r['above20mmUnreliable']}), "
-              f"unreliable {r['unreliableFraction']}")
+              f">20 mm warned {r['above20mmWarned']}/{r['above20mm']} (unreliable {r['above20mmUnreliable']}, "
+              f"untrusted {r['above20mmUntrusted']}), unreliable {r['unreliableFraction']}, untrusted {r['untrustedFraction']}")
     for s, r in out["heldBackSources"].items():
         print(f"  held-back source {s}: pairs in 85-95% {r['pairsWithin85to95']}/{r['pairs']} (min {r['coverageMin']}, "
               f"max {r['coverageMax']}), wall {r['wallCoverage']}, polyps {r['polypCoverage']}, r {r['pearson']}, "
-              f">20 warned {r['above20mmWarned']}/{r['above20mm']}")
+              f">20 warned {r['above20mmWarned']}/{r['above20mm']}, unreliable {r['unreliableFraction']}")
     print("final: constexpr double kC[kUncertaintyFeatures] = {" + ", ".join(f"{c:.4f}" for c in out["final"]["coefficients"]) +
           "};  kLogQ90 = " + f"{out['final']['q90']:.4f}")
 

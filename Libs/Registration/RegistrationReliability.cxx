@@ -12,8 +12,8 @@ SegmentTrust JudgeSegment(const SegmentEvidence& e, bool flexuresJoint, const Re
   return t;
 }
 
-Eigen::VectorXd ReliableVertices(const UncertaintyComponents& c, bool trusted, const std::array<bool, 2>& endSuspect,
-                                 const ReliabilityOptions& o) {
+Eigen::VectorXd TrustedVertices(const UncertaintyComponents& c, bool trusted, const std::array<bool, 2>& endSuspect,
+                                const ReliabilityOptions& o) {
   const Eigen::Index n = c.flexureMm.size();
   Eigen::VectorXd reliable = Eigen::VectorXd::Constant(n, trusted ? 1.0 : 0.0);
   if (!trusted) return reliable;
@@ -21,6 +21,10 @@ Eigen::VectorXd ReliableVertices(const UncertaintyComponents& c, bool trusted, c
     if (endSuspect[e] && c.endMm[e].size() == n)
       reliable = (c.endMm[e].array() < o.flexureReachMm).select(0.0, reliable.array()).matrix();
   return reliable;
+}
+
+Eigen::VectorXd ReliableVertices(const Eigen::VectorXd& trusted, const Eigen::VectorXd& bound90, const ReliabilityOptions& o) {
+  return (bound90.array() <= o.maxBound90Mm).select(trusted.array(), 0.0).matrix();
 }
 
 }  // namespace colonmap::registration

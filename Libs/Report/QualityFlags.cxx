@@ -134,6 +134,20 @@ void FlatteningFlags(const StageSummaries& s, const QualityThresholds& t, std::v
 void RegistrationFlags(const StageSummaries& s, const QualityThresholds& t, std::vector<QualityFlag>& flags) {
   const json& r = s.registration;
   if (r.is_null()) return;
+  // The registration's own trust of each segment (RegistrationReliability.h), when it says.
+  if (r.contains("untrustedSegments") && r["untrustedSegments"].is_string()) {
+    const std::string untrusted = r["untrustedSegments"].get<std::string>();
+    QualityFlag f{"Segments trusted", untrusted.empty(), ""};
+    for (const char* seg : kSegments) {
+      const json segment = r.value("segments", json::object()).value(seg, json());
+      if (!segment.is_object() || !segment.contains("trusted")) continue;
+      f.detail += std::string(seg) + (segment["trusted"].get<bool>() ? " yes" : " NO") + " (expected error " +
+                  Fixed(Number(segment, "expectedErrorMm", 0.0), 1) + " mm), ";
+    }
+    f.detail += f.ok ? "findings carry reliable=false only where their bound exceeds " + Fixed(Number(r, "reliableBoundMm", 10.0), 0) + " mm"
+                     : "findings on untrusted segments carry reliable=false";
+    flags.push_back(f);
+  }
   const int flips = static_cast<int>(Number(r, "flippedTriangles", -1.0));
   flags.push_back({"Registration one-to-one", flips == 0,
                    std::to_string(flips) + " flipped triangles in the composed map" +

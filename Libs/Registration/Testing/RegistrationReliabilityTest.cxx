@@ -51,10 +51,14 @@ TEST(RegistrationReliability, FlexureEndDistancesAndSuspectEnds) {
   EXPECT_EQ(EstimateUncertainty(s, h, K, {}, e).components.flexureMm(middle), kNoFlexureMm);
 
   // Reliability: a suspect v-max end makes the last 60 mm unreliable, the rest stays reliable.
-  const Eigen::VectorXd r = ReliableVertices(U.components, true, {false, true});
+  const Eigen::VectorXd r = TrustedVertices(U.components, true, {false, true});
   for (Eigen::Index i = 0; i < r.size(); ++i) {
     EXPECT_EQ(r(i), U.components.endMm[1](i) < 60.0 ? 0.0 : 1.0) << "vertex " << i;
   }
-  EXPECT_EQ(ReliableVertices(U.components, false, {false, false}).maxCoeff(), 0.0);
-  EXPECT_EQ(ReliableVertices(U.components, true, {false, false}).minCoeff(), 1.0);
+  EXPECT_EQ(TrustedVertices(U.components, false, {false, false}).maxCoeff(), 0.0);
+  EXPECT_EQ(TrustedVertices(U.components, true, {false, false}).minCoeff(), 1.0);
+  // Reliable: trusted and a bound within 10 mm.
+  const Eigen::VectorXd bound = (Eigen::VectorXd(4) << 5.0, 10.0, 10.5, 30.0).finished();
+  const Eigen::VectorXd trusted = (Eigen::VectorXd(4) << 1.0, 1.0, 1.0, 0.0).finished();
+  EXPECT_EQ(ReliableVertices(trusted, bound), (Eigen::VectorXd(4) << 1.0, 1.0, 0.0, 0.0).finished());
 }

@@ -107,3 +107,17 @@ TEST(QualityFlags, JointFlexuresAreTrustedOnlyWithAnOrderedChoiceAndAGoodAlignme
   s.landmarks[0]["jointChoice"] = json{{"pairedWith", ""}, {"consistent", true}, {"fallback", false}};
   EXPECT_THROW(Find(AssessQuality(s), "Flexures chosen jointly"), std::runtime_error);
 }
+
+TEST(QualityFlags, UntrustedSegmentsAreFlagged) {
+  StageSummaries s = Good();
+  EXPECT_THROW(Find(AssessQuality(s), "Segments trusted"), std::runtime_error);  // an older registration.json
+  s.registration["untrustedSegments"] = "";
+  for (const char* seg : {"A", "T", "D", "S", "R"})
+    s.registration["segments"][seg]["trusted"] = true, s.registration["segments"][seg]["expectedErrorMm"] = 1.5;
+  EXPECT_TRUE(Find(AssessQuality(s), "Segments trusted").ok);
+  s.registration["untrustedSegments"] = "S";
+  s.registration["segments"]["S"]["trusted"] = false;
+  const QualityFlag f = Find(AssessQuality(s), "Segments trusted");
+  EXPECT_FALSE(f.ok);
+  EXPECT_NE(f.detail.find("S NO"), std::string::npos) << f.detail;
+}

@@ -138,7 +138,8 @@ void Run(cli::ModuleContext& ctx) {
         const double v = forward.SourceValue(a, t);
         if (std::isfinite(v)) row[a] = v;
       }
-      if (t.segment >= 0 && t.segment < 5) row["mapSegment"] = kNames[t.segment];  // the registration's segment at the foot
+      if (t.segment >= 0 && t.segment < 5) row["mapSegment"] = kNames[t.segment];
+      if (const double v = forward.SourceValue("Trusted", t); std::isfinite(v)) row["trusted"] = v >= 0.5;  // the registration's segment at the foot
       perPoint.push_back(row);
       for (const std::string& g : polyps ? std::vector<std::string>{"polyps"} : std::vector<std::string>{"all", seg}) {
         if (g.empty()) continue;

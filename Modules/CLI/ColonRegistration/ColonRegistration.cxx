@@ -158,6 +158,9 @@ void Run(cli::ModuleContext& ctx) {
                                     : methodName == "harmonic" ? RegistrationMethod::Harmonic
                                                                : RegistrationMethod::Conformal;
   const bool reportTimes = ctx.args.GetBool("reportTimes");
+  ReliabilityOptions reliability;
+  reliability.maxBound90Mm = ctx.args.GetDouble("reliableBoundMm");
+  if (!(reliability.maxBound90Mm > 0)) throw Error("reliable bound: must be a positive number of mm (--reliableBoundMm)");
   HarmonicOptions harmonic;
   harmonic.curvatureAlignment = ctx.args.GetString("initialMap") != "affine";
   harmonic.folds.method = ctx.args.GetString("foldDetection") == "threshold" ? FoldDetection::Threshold : FoldDetection::GraphCut;
@@ -327,15 +330,20 @@ void Run(cli::ModuleContext& ctx) {
     // The v-min end borders the next segment towards the anus (id + 1), the v-max end the previous.
     const std::array<bool, 2> endSuspect = {r.uncertainty.segment.flexureAtEnd[0] && untrustedId(id + 1),
                                             r.uncertainty.segment.flexureAtEnd[1] && untrustedId(id - 1)};
-    const Eigen::VectorXd reliable = ReliableVertices(r.uncertainty.components, trust[k].trusted, endSuspect);
+    const Eigen::VectorXd trusted = TrustedVertices(r.uncertainty.components, trust[k].trusted, endSuspect, reliability);
+    const Eigen::VectorXd reliable = ReliableVertices(trusted, r.uncertainty.bound90, reliability);
+    supineParts[k].pointData["Trusted"] = DataArray{trusted, true};
     supineParts[k].pointData["Reliable"] = DataArray{reliable, true};
-    // Prone vertices: reliable where the supine point they come from is (nearest of the three).
-    const Eigen::VectorXd proneReliable =
-        Interpolate(r.inverse, supineFaces[k], reliable).col(0).unaryExpr([](double x) { return x >= 0.5 ? 1.0 : 0.0; });
-    proneParts[k].pointData["Reliable"] = DataArray{proneReliable, true};
+    // Prone vertices: as the supine point they come from (the nearest of the three).
+    const auto toProne = [&](const Eigen::VectorXd& flag) -> Eigen::VectorXd {
+      return Interpolate(r.inverse, supineFaces[k], flag).col(0).unaryExpr([](double x) { return x >= 0.5 ? 1.0 : 0.0; });
+    };
+    proneParts[k].pointData["Trusted"] = DataArray{toProne(trusted), true};
+    proneParts[k].pointData["Reliable"] = DataArray{toProne(reliable), true};
     json& j = segments[X];
     j["trusted"] = trust[k].trusted;
     j["untrustedBecause"] = trust[k].reasons;
+    j["trustedFraction"] = trusted.size() ? trusted.mean() : 0.0;
     j["reliableFraction"] = reliable.size() ? reliable.mean() : 0.0;
     j["expectedErrorMm"] = j["uncertainty"]["medianOfVertices"];
     if (!trust[k].trusted) {
@@ -373,6 +381,7 @@ void Run(cli::ModuleContext& ctx) {
   report["meanDilatation"] = K.mean();
   report["flexuresJoint"] = flexuresJoint;
   report["untrustedSegments"] = untrusted;
+  report["reliableBoundMm"] = reliability.maxBound90Mm;
   if (method == RegistrationMethod::Harmonic) {
     io::WriteMarkups(supineFeatures, ctx.outputs.Stage((fs::path(out) / "supine_features.mrk.json").string(), "output supine_features.mrk.json"),
                      "supine features");

@@ -192,8 +192,11 @@ try:
         check(isinstance(seg.get("trusted"), bool) and seg.get("expectedErrorMm", 0) > 0, f"{x}: trust fields {seg.get('trusted')}")
         check("curvatureAgreement" in seg["uncertainty"] and "lengthMismatch" in seg["uncertainty"], f"{x}: evidence fields")
     check(set(harrays["Reliable"]) <= {0.0, 1.0}, "Reliable is 0/1")
+    check(all(r == (t == 1.0 and u <= hreport["reliableBoundMm"]) for r, t, u in
+              zip(harrays["Reliable"], harrays["Trusted"], harrays["Uncertainty90"])), "Reliable = Trusted and bound <= reliableBoundMm")
     check(all(v >= 0 for v in harrays["UncertaintyFlexureMm"]), "UncertaintyFlexureMm")
     print("trusted segments: " + " ".join(f"{x}:{hreport['segments'][x]['trusted']}" for x in NAMES) +
+          f", trusted vertices {sum(harrays['Trusted']) / len(harrays['Trusted']):.2f}"
           f", reliable vertices {sum(harrays['Reliable']) / len(harrays['Reliable']):.2f}")
     # Flexures found for each scan alone (ColonLandmarks without --pairedSurface records it, and
     # flattening.json hands it on): nothing can be trusted, every vertex is unreliable, a warning.
@@ -210,7 +213,11 @@ try:
     check(r.returncode == 0 and ret.get("untrustedSegments") == "A,T,D,S,R", f"alone: {ret.get('untrustedSegments')} {r.stderr}")
     check("flexures not chosen jointly" in r.stdout and "WARNING" in r.stdout, "alone: warning")
     _, _, aarrays, _ = read(os.path.join(outa, "registration.vtp"))
-    check(max(aarrays["Reliable"]) == 0.0, "alone: every vertex unreliable")
+    check(max(aarrays["Reliable"]) == 0.0 and max(aarrays["Trusted"]) == 0.0, "alone: every vertex unreliable")
+    # A bad bound option is refused before anything is written.
+    r = run("--reliableBoundMm", "nan", os.path.join(data, "supine"), os.path.join(data, "prone"), os.path.join(work, "nanbound"))
+    check(r.returncode != 0 and "reliableBoundMm" in r.stderr and not os.path.exists(os.path.join(work, "nanbound")),
+          f"nan bound: {r.stderr}")
 
     # Determinism: a second run gives identical files.
     out2 = os.path.join(work, "reg2")
