@@ -1,4 +1,5 @@
 #include "IO/ItkImageBridge.h"
+#include "IO/NiftiCheck.h"
 
 #include "Core/Error.h"
 
@@ -91,6 +92,7 @@ void ItkReadImage(const std::string& path, const std::string& what, ImageGeometr
   std::error_code ec;
   if (!IsHostPath(path) && !fs::exists(path, ec)) throw InputError(what, path, "file does not exist");
   if (!IsHostPath(path)) CheckNrrdHeader(path, what);
+  if (!IsHostPath(path)) CheckNiftiFile(path, what);
   typename ItkImage<T>::Pointer image;
   try {
     if (!IsHostPath(path) && fs::is_directory(path, ec)) {

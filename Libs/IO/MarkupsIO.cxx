@@ -6,6 +6,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <cctype>
+#include <cmath>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -97,11 +99,23 @@ MarkupList ReadFcsv(const std::string& path, const std::string& what) {
     while (std::getline(ls, item, ',')) f.push_back(item);
     if (f.size() < 4) throw InputError(what, path, "a row has fewer than 4 columns");
     ControlPoint p;
-    try {
-      p.position = ToLps(Eigen::Vector3d(std::stod(f[1]), std::stod(f[2]), std::stod(f[3])), ras);
-    } catch (const std::exception&) {
-      throw InputError(what, path, "a row's x,y,z are not numbers");
-    }
+    // The whole field must be the number ("12.3mm" is not 12.3), and finite.
+    const auto number = [&](const std::string& text) {
+      std::size_t used = 0;
+      double v = 0;
+      try {
+        v = std::stod(text, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      while (used < text.size() && std::isspace(static_cast<unsigned char>(text[used]))) ++used;
+      if (used == 0 || used != text.size())
+        throw InputError(what, path, "row " + std::to_string(list.points.size() + 1) + ": '" + text + "' is not a number");
+      if (!std::isfinite(v))
+        throw InputError(what, path, "row " + std::to_string(list.points.size() + 1) + ": a coordinate is NaN or infinite");
+      return v;
+    };
+    p.position = ToLps(Eigen::Vector3d(number(f[1]), number(f[2]), number(f[3])), ras);
     if (f.size() > 11) p.label = f[11];
     if (f.size() > 12) p.description = f[12];
     list.points.push_back(p);

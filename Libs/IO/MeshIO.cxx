@@ -167,6 +167,34 @@ void WritePolyData(vtkPolyData* data, const std::string& path, const std::string
 
 }  // namespace
 
+namespace {
+
+// What a reader checks at the door (issue 24): NaN or infinite coordinates make later stages
+// crash or spin (a centroid of NaNs, a locator that never converges), and a triangle naming a
+// point past the end reads memory that is not ours. NaN in a data array is refused too; +-inf is
+// allowed there (a dilatation K of a degenerate face is +inf by definition).
+void CheckFinitePoints(const Eigen::MatrixXd& V, const std::string& path, const std::string& what) {
+  for (Eigen::Index i = 0; i < V.rows(); ++i)
+    if (!V.row(i).allFinite())
+      throw InputError(what, path, "point " + std::to_string(i) + " has a NaN or infinite coordinate");
+}
+
+void CheckMesh(const TriangleMesh& mesh, const std::string& path, const std::string& what) {
+  CheckFinitePoints(mesh.V, path, what);
+  const Eigen::Index n = mesh.V.rows();
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k)
+      if (mesh.F(f, k) < 0 || mesh.F(f, k) >= n)
+        throw InputError(what, path, "triangle " + std::to_string(f) + " names point " + std::to_string(mesh.F(f, k)) +
+                                         ", but there are " + std::to_string(n) + " points");
+  for (const auto* arrays : {&mesh.pointData, &mesh.cellData})
+    for (const auto& [name, d] : *arrays)
+      if (d.values.array().isNaN().any())
+        throw InputError(what, path, "array " + name + " holds NaN values");
+}
+
+}  // namespace
+
 TriangleMesh ReadMesh(const std::string& path, const std::string& what) {
   vtkSmartPointer<vtkPolyData> data = ReadPolyData(path, what);
   TriangleMesh mesh;
@@ -202,6 +230,7 @@ TriangleMesh ReadMesh(const std::string& path, const std::string& what) {
       mesh.cellData[name] = std::move(expanded);
     }
   }
+  CheckMesh(mesh, path, what);
   return mesh;
 }
 
@@ -235,10 +264,14 @@ PolylineSet ReadPolylines(const std::string& path, const std::string& what) {
     const vtkIdType count = line.closed ? n - 1 : n;
     line.points.resize(count, 3);
     for (vtkIdType k = 0; k < count; ++k) {
+      if (ids->GetId(k) < 0 || ids->GetId(k) >= data->GetNumberOfPoints())
+        throw InputError(what, path, "line " + std::to_string(cell) + " names point " + std::to_string(ids->GetId(k)) +
+                                         ", but there are " + std::to_string(data->GetNumberOfPoints()) + " points");
       double p[3];
       data->GetPoint(ids->GetId(k), p);
       line.points.row(k) << p[0], p[1], p[2];
     }
+    CheckFinitePoints(line.points, path, what);
     if (names && cell < names->GetNumberOfValues()) line.name = names->GetValue(cell);
     set.lines.push_back(std::move(line));
   }

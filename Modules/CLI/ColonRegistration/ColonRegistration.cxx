@@ -48,6 +48,13 @@ ScanSegment ReadSegment(const fs::path& dir, int id, const json& report, const s
   const std::string path = (dir / ("flat_" + X + ".vtp")).string(), what = scan + " flat mesh " + X;
   s.flat = io::ReadMesh(path, what);
   if (s.flat.F.rows() == 0) throw InputError(what, path, "has no triangles");
+  // A file renamed or swapped with another segment's (issue 24): its SegmentId says which it is.
+  if (auto sid = s.flat.pointData.find("SegmentId"); sid != s.flat.pointData.end() && sid->second.values.size() > 0) {
+    const double other = (sid->second.values.array() != static_cast<double>(id)).select(sid->second.values.array(), -1.0).maxCoeff();
+    if (other >= 0 && other < 5)
+      throw InputError(what, path, std::string("holds segment ") + kNames[static_cast<int>(other)] + " (SegmentId " +
+                                       std::to_string(static_cast<int>(other)) + "), not " + X);
+  }
   s.input.flat.uv = Need(s.flat, "FlatUV", 2, what, path).values;
   s.input.flat.position = Need(s.flat, "Position3D", 3, what, path).values;
   s.input.flat.F = s.flat.F;

@@ -142,12 +142,19 @@ void CheckInputs(const Options& o) {
     if (o.scan[k].empty()) throw Error(std::string(kScans[k]) + " scan: no file given (--" + kScans[k] + ")");
     if (!fs::exists(o.scan[k])) throw InputError(std::string(kScans[k]) + " scan", o.scan[k], "does not exist");
   }
-  if (!o.findings.empty() && !fs::is_regular_file(o.findings))
-    throw InputError("findings", o.findings, "does not exist");
+  // Everything read late in the pipeline is read now too: a bad findings or truth file must stop
+  // the run before a minute of work, not after it (issue 24).
+  if (!o.findings.empty()) {
+    if (!fs::is_regular_file(o.findings)) throw InputError("findings", o.findings, "does not exist");
+    if (io::ReadMarkups(o.findings, "findings").points.empty()) throw InputError("findings", o.findings, "holds no points");
+  }
   if (!o.truth.empty()) {
-    for (const char* f : {"supine_eval.mrk.json", "prone_eval.mrk.json"})
-      if (!fs::is_regular_file(fs::path(o.truth) / f))
+    for (const char* f : {"supine_eval.mrk.json", "prone_eval.mrk.json"}) {
+      const fs::path t = fs::path(o.truth) / f;
+      if (!fs::is_regular_file(t))
         throw InputError("ground truth folder", o.truth, std::string("has no ") + f + " (a ColonPhantom output folder)");
+      io::ReadMarkups(t.string(), std::string("ground truth ") + f);
+    }
   }
 }
 

@@ -32,6 +32,7 @@ void Run(cli::ModuleContext& ctx) {
   ctx.progress.Plan({{"Read", 1.0}, {"Transfer", 1.0}, {"Write", 0.1}});
   ctx.progress.StartStage("Read", "reading the registration");
   const MarkupList points = io::ReadMarkups(in, "input points");
+  if (points.points.empty()) throw InputError("input points", in, "holds no points (nothing to carry across)");
   const RegistrationMeshes meshes = ReadRegistration(reg, ctx.args.GetString("proneMesh"));
   ctx.progress.Report(0.6);
   const PointTransfer transfer(toProne ? meshes.supine : meshes.prone, toProne ? meshes.prone : meshes.supine,
