@@ -6,7 +6,7 @@ ground truth and says how it holds on pairs it was not fitted on (issue 20). A b
 
 Each pool is a registration_seeds.py cache (CACHE/seed<N>/RUNS/harmonic/{errors.json,registration.json} or,
 with its --work CACHE/RUNS, CACHE/RUNS/seed<N>/harmonic; RUNS defaults to "runs"), e.g. phantom0.5=/tmp/ph3 gca=/tmp/rc-gca-00020:runs2. The model is
-log sigma = c . x with x = UncertaintyFeatures (the same 11 inputs as the C++), fitted by least squares
+log sigma = c . x with x = UncertaintyFeatures (the same 12 inputs as the C++), fitted by least squares
 of log(max(true error, 0.2 mm)) on the evaluation wall points and polyps, coefficients but the intercept
 kept >= 0; the 90% bound is sigma * exp(q90) with
 q90 the 90% quantile of the fit's log residuals.
@@ -29,7 +29,7 @@ import re
 import statistics
 
 FEATURES = ["1", "log1p(loo)", "log1p(near/10)", "log1p(corr)", "log K", "1-pathCorrelation", "droppedFraction",
-            "1/(1+matchesPer100mm)", "exp(-flex/30)", "1-curvatureAgreement", "lengthMismatch"]
+            "1/(1+matchesPer100mm)", "exp(-flex/30)", "1-curvatureAgreement", "lengthMismatch", "curv"]
 SOURCE = {"phantom": "tube"}  # pools whose name starts with "phantom" are one source
 
 
@@ -40,7 +40,7 @@ def features(p, seg):
             math.log1p(max(0.0, p["UncertaintyCorrectionMm"])), math.log(K), 1.0 - seg["pathCorrelation"],
             seg["droppedFraction"], 1.0 / (1.0 + seg["matchesPer100mm"]),
             math.exp(-max(0.0, p.get("UncertaintyFlexureMm", 1000.0)) / 30.0), 1.0 - seg.get("curvatureAgreement", 1.0),
-            seg.get("lengthMismatch", 0.0)]
+            seg.get("lengthMismatch", 0.0), min(5.0, max(0.0, p.get("UncertaintyCurvature", 0.0)))]
 
 
 def load(pools):

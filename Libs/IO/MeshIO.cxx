@@ -9,7 +9,9 @@
 #include <vtkDoubleArray.h>
 #include <vtkIdList.h>
 #include <vtkIntArray.h>
+#include <vtkLogger.h>
 #include <vtkNew.h>
+#include <vtkOutputWindow.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
@@ -52,7 +54,20 @@ struct ErrorCollector {
   }
 };
 
+// VTK's own log (a parser's errors, with terminal colours, 10-49 lines) must not reach the user's
+// stderr before our one line (issue 24): what a reader reports reaches us through the
+// ErrorCollector's events and becomes that line; the rest goes nowhere.
+void QuietVtkLog() {
+  static const bool once = [] {
+    vtkOutputWindow::GetInstance()->SetDisplayModeToNever();
+    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+    return true;
+  }();
+  (void)once;
+}
+
 vtkSmartPointer<vtkPolyData> ReadPolyData(const std::string& path, const std::string& what) {
+  QuietVtkLog();
   std::error_code ec;
   if (path.empty()) throw Error(what + ": no file given");
   if (!fs::exists(path, ec)) throw InputError(what, path, "file does not exist");
@@ -139,6 +154,7 @@ Eigen::MatrixXd FromPoints(vtkPoints* points) {
 }
 
 void WritePolyData(vtkPolyData* data, const std::string& path, const std::string& what) {
+  QuietVtkLog();
   const std::string ext = Lower(fs::path(path).extension().string());
   std::string error;
   int ok = 0;

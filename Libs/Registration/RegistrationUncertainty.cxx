@@ -19,26 +19,24 @@ namespace {
 // HuBMAP VHM and VHF (seeds 1-8 each, 1 mm); 8400 wall points and 172 polyps. The fewer-matches
 // and length-ratio inputs came out at 0 (the distance to a match and RegistrationReliability.h
 // carry them). docs/accuracy.md gives the held-back figures.
-constexpr double kC[kUncertaintyFeatures] = {-1.5654, 0.2529, 0.6834, 0.1432, 0.0992, 0.8235, 0.1041, 0.0000, 0.6448, 0.5603, 0.0000};
-constexpr double kLogQ90 = 1.0520;
+constexpr double kC[kUncertaintyFeatures] = {-1.6194, 0.2515, 0.6949, 0.1428, 0.0862, 0.8235, 0.0922, 0.0000, 0.6473, 0.5447, 0.0000, 0.0889};
+constexpr double kLogQ90 = 1.0431;
 
 }  // namespace
 
-Eigen::Matrix<double, kUncertaintyFeatures, 1> UncertaintyFeatures(double loo, double nearMm, double correctionMm,
-                                                                   double dilatation, double flexureMm,
-                                                                   const SegmentEvidence& s) {
-  const double K = std::isfinite(dilatation) ? std::max(1.0, dilatation) : 10.0;
+Eigen::Matrix<double, kUncertaintyFeatures, 1> UncertaintyFeatures(const PointEvidence& p, const SegmentEvidence& s) {
+  const double K = std::isfinite(p.dilatation) ? std::max(1.0, p.dilatation) : 10.0;
   Eigen::Matrix<double, kUncertaintyFeatures, 1> x;
-  x << 1.0, std::log1p(std::max(0.0, loo)), std::log1p(std::max(0.0, nearMm) / 10.0), std::log1p(std::max(0.0, correctionMm)),
-      std::log(K), 1.0 - s.pathCorrelation, s.droppedFraction, 1.0 / (1.0 + s.matchesPer100mm),
-      std::exp(-std::max(0.0, flexureMm) / 30.0), 1.0 - s.curvatureAgreement, s.lengthMismatch;
+  x << 1.0, std::log1p(std::max(0.0, p.loo)), std::log1p(std::max(0.0, p.nearMm) / 10.0),
+      std::log1p(std::max(0.0, p.correctionMm)), std::log(K), 1.0 - s.pathCorrelation, s.droppedFraction,
+      1.0 / (1.0 + s.matchesPer100mm), std::exp(-std::max(0.0, p.flexureMm) / 30.0), 1.0 - s.curvatureAgreement,
+      s.lengthMismatch, std::clamp(p.curvature, 0.0, 5.0);
   return x;
 }
 
-double UncertaintyMedian(double loo, double nearMm, double correctionMm, double dilatation, double flexureMm,
-                         const SegmentEvidence& s) {
+double UncertaintyMedian(const PointEvidence& p, const SegmentEvidence& s) {
   const Eigen::Map<const Eigen::Matrix<double, kUncertaintyFeatures, 1>> c(kC);
-  return std::exp(c.dot(UncertaintyFeatures(loo, nearMm, correctionMm, dilatation, flexureMm, s)));
+  return std::exp(c.dot(UncertaintyFeatures(p, s)));
 }
 
 double UncertaintyBound90(double median) { return median * std::exp(kLogQ90); }
@@ -55,7 +53,7 @@ double FlatLengthMm(const FlatSegment& flat) {
 
 VertexUncertainty EstimateUncertainty(const FlatSegment& flat, const Eigen::MatrixXd& h, const Eigen::VectorXd& K,
                                       const std::vector<ConstraintPoint>& constraints, const SegmentEvidence& segment,
-                                      int neighbours) {
+                                      const Eigen::VectorXd& meanCurvature, int neighbours) {
   const Eigen::Index n = flat.uv.rows();
   VertexUncertainty out;
   UncertaintyComponents& c = out.components;
@@ -115,6 +113,24 @@ VertexUncertainty EstimateUncertainty(const FlatSegment& flat, const Eigen::Matr
   c.flexureMm = Eigen::VectorXd::Constant(n, kNoFlexureMm);
   for (int e = 0; e < 2; ++e)
     if (segment.flexureAtEnd[e]) c.flexureMm = c.flexureMm.cwiseMin(c.endMm[e]);
+  c.curvature = Eigen::VectorXd::Zero(n);
+  if (meanCurvature.size() == n) {
+    // |H| averaged twice over each vertex and its neighbours (about its 20 nearest vertices).
+    std::vector<std::vector<Eigen::Index>> ring(static_cast<std::size_t>(n));
+    for (Eigen::Index f = 0; f < flat.F.rows(); ++f)
+      for (int j = 0; j < 3; ++j) ring[flat.F(f, j)].push_back(flat.F(f, (j + 1) % 3));
+    Eigen::VectorXd a = meanCurvature.cwiseAbs();
+    for (int pass = 0; pass < 2; ++pass) {
+      Eigen::VectorXd b(n);
+      for (Eigen::Index i = 0; i < n; ++i) {
+        double sum = a(i);
+        for (Eigen::Index j : ring[i]) sum += a(j);
+        b(i) = sum / static_cast<double>(1 + ring[i].size());
+      }
+      a = b;
+    }
+    c.curvature = (10.0 * a).cwiseMin(5.0);
+  }
   c.loo.resize(n);
   c.nearMm.resize(n);
   c.correctionMm = h.rows() == n ? Eigen::VectorXd(h.rowwise().norm() * scale) : Eigen::VectorXd::Zero(n);
@@ -142,7 +158,8 @@ VertexUncertainty EstimateUncertainty(const FlatSegment& flat, const Eigen::Matr
   out.median.resize(n);
   out.bound90.resize(n);
   for (Eigen::Index i = 0; i < n; ++i) {
-    out.median(i) = UncertaintyMedian(c.loo(i), c.nearMm(i), c.correctionMm(i), c.dilatation(i), c.flexureMm(i), evidence);
+    out.median(i) = UncertaintyMedian({c.loo(i), c.nearMm(i), c.correctionMm(i), c.dilatation(i), c.flexureMm(i), c.curvature(i)},
+                                      evidence);
     out.bound90(i) = UncertaintyBound90(out.median(i));
   }
   return out;

@@ -13,6 +13,10 @@
 //   near(x):  distance (mm) from x to the nearest kept constraint.
 //   corr(x):  |h(x)| in mm, the size of the harmonic correction.
 //   K(x):     the map's dilatation (mean over the vertex's faces).
+//   curv(x):  |mean curvature| averaged over about two rings of neighbours, x 10 mm, capped at 5:
+//             fold crests and polyps (bumps) are where the wall differs most between the scans
+//             and snapping to the other wall is least sure (issue 20: polyps had been covered
+//             77% by a bound that held for 90% of wall points).
 //   flex(x):  distance (mm along the segment) to the nearest end that is a flexure. Both scans'
 //             segment ends are pinned to each other, so a flexure placed at slightly different
 //             anatomy in the two scans moves every point near it (issue 20: on real-colon pairs
@@ -58,6 +62,12 @@ struct UncertaintyComponents {
   Eigen::VectorXd loo, nearMm, correctionMm, dilatation;  // per vertex
   Eigen::VectorXd endMm[2];  // distance along the segment (mm) to its v-min and its v-max end
   Eigen::VectorXd flexureMm; // to the nearest end that is a flexure (kNoFlexureMm when none)
+  Eigen::VectorXd curvature; // the curv input above (0 without mean curvature)
+};
+
+// One point's inputs (the per-vertex components at one vertex).
+struct PointEvidence {
+  double loo = 0.0, nearMm = 0.0, correctionMm = 0.0, dilatation = 1.0, flexureMm = kNoFlexureMm, curvature = 0.0;
 };
 
 struct VertexUncertainty {
@@ -74,23 +84,21 @@ double MmPerFlatUnit(const FlatSegment& flat);
 double FlatLengthMm(const FlatSegment& flat);
 
 // flat: the supine segment (uv, F, position, period); h: n x 2 correction (zero rows when none);
-// K: per-face dilatation (m values, +inf allowed); constraints: the kept ones.
+// K: per-face dilatation (m values, +inf allowed); constraints: the kept ones; meanCurvature: per
+// vertex (1/mm; empty: no curvature input).
 VertexUncertainty EstimateUncertainty(const FlatSegment& flat, const Eigen::MatrixXd& h, const Eigen::VectorXd& K,
                                       const std::vector<ConstraintPoint>& constraints, const SegmentEvidence& segment,
-                                      int neighbours = 6);
+                                      const Eigen::VectorXd& meanCurvature = Eigen::VectorXd(), int neighbours = 6);
 
 // The model's inputs at one point, in the order of its coefficients (1 first): 1, log(1 + loo),
 // log(1 + near / 10 mm), log(1 + corr), log K (K >= 1, +inf as 10), 1 - pathCorrelation,
 // droppedFraction, 1 / (1 + matchesPer100mm), exp(-flex / 30 mm), 1 - curvatureAgreement,
-// lengthMismatch. scripts/fit_uncertainty.py computes the same.
-constexpr int kUncertaintyFeatures = 11;
-Eigen::Matrix<double, kUncertaintyFeatures, 1> UncertaintyFeatures(double loo, double nearMm, double correctionMm,
-                                                                   double dilatation, double flexureMm,
-                                                                   const SegmentEvidence& segment);
+// lengthMismatch, curv. scripts/fit_uncertainty.py computes the same.
+constexpr int kUncertaintyFeatures = 12;
+Eigen::Matrix<double, kUncertaintyFeatures, 1> UncertaintyFeatures(const PointEvidence& point, const SegmentEvidence& segment);
 
 // The model alone (for tests and for documenting it): sigma from the components of one point.
-double UncertaintyMedian(double loo, double nearMm, double correctionMm, double dilatation, double flexureMm,
-                         const SegmentEvidence& segment);
+double UncertaintyMedian(const PointEvidence& point, const SegmentEvidence& segment);
 double UncertaintyBound90(double median);
 
 }  // namespace colonmap::registration

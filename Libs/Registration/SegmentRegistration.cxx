@@ -217,7 +217,7 @@ SegmentRegistration RegisterSegment(const SegmentInput& supine, const SegmentInp
   const Eigen::MatrixXd h = method == RegistrationMethod::Harmonic && r.correction.h.rows() == supine.flat.uv.rows()
                                 ? Eigen::MatrixXd(r.imageUV - etaUV)
                                 : Eigen::MatrixXd(Eigen::MatrixXd::Zero(supine.flat.uv.rows(), 2));
-  r.uncertainty = EstimateUncertainty(supine.flat, h, Dilatation(r.mu), r.constraints, evidence);
+  r.uncertainty = EstimateUncertainty(supine.flat, h, Dilatation(r.mu), r.constraints, evidence, supine.meanCurvature);
   r.times.emplace_back("uncertainty", Seconds(t0));
   progress.Report(1.0);
   return r;

@@ -105,6 +105,12 @@ try:
         expect_refused(f"surface with a {label} coordinate", "ColonLandmarks", [path, out], path,
                        ["point 17", "NaN or infinite"], [out])
 
+    # A surface file that is not XML at all: VTK's parser printed its own log lines before ours.
+    path = os.path.join(work, "garbage.vtp")
+    open(path, "w").write("<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" <<< not xml\n")
+    out = os.path.join(work, "landmarks_garbage")
+    expect_refused("surface that is not XML", "ColonLandmarks", [path, out], path, ["cannot be read"], [out])
+
     # A flat segment with NaN FlatUV.
     reg = os.path.join(data, "registration-2mm-96")
     supine = os.path.join(work, "supine-flat")

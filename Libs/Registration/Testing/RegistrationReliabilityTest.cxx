@@ -62,3 +62,22 @@ TEST(RegistrationReliability, FlexureEndDistancesAndSuspectEnds) {
   const Eigen::VectorXd trusted = (Eigen::VectorXd(4) << 1.0, 1.0, 1.0, 0.0).finished();
   EXPECT_EQ(ReliableVertices(trusted, bound), (Eigen::VectorXd(4) << 1.0, 1.0, 0.0, 0.0).finished());
 }
+
+TEST(RegistrationUncertainty, CurvatureWidensTheBoundOnABump) {
+  // Mean curvature 0.3 /mm (a polyp of about 3 mm radius) on a patch of rows, 0.02 elsewhere.
+  const int nu = 20, nv = 40;
+  const FlatSegment s = colonmap::registration::testing::CylinderSegment(nu, nv, 2.0);
+  const Eigen::VectorXd K = Eigen::VectorXd::Ones(s.F.rows());
+  const Eigen::MatrixXd h = Eigen::MatrixXd::Zero(s.uv.rows(), 2);
+  Eigen::VectorXd H = Eigen::VectorXd::Constant(s.uv.rows(), 0.02);
+  for (int row = 18; row <= 22; ++row)
+    for (int col = 8; col <= 12; ++col) H(row * (nu + 1) + col) = 0.3;
+  const VertexUncertainty U = EstimateUncertainty(s, h, K, {}, SegmentEvidence{}, H);
+  const int bump = 20 * (nu + 1) + 10, flat = 5 * (nu + 1) + 10;
+  EXPECT_NEAR(U.components.curvature(flat), 0.2, 1e-9);  // 10 mm x 0.02 /mm
+  EXPECT_GT(U.components.curvature(bump), 2.0);          // smoothed over two rings, still high
+  EXPECT_LE(U.components.curvature.maxCoeff(), 5.0);
+  EXPECT_GT(U.median(bump), U.median(flat));
+  // Without curvature the input is 0 everywhere.
+  EXPECT_EQ(EstimateUncertainty(s, h, K, {}, SegmentEvidence{}).components.curvature.maxCoeff(), 0.0);
+}

@@ -134,7 +134,7 @@ void Run(cli::ModuleContext& ctx) {
                   {"mappedFlat", {flatMapped.x(), flatMapped.y()}}, {"trueFlat", {flatTrue.x(), flatTrue.y()}}};
       // The uncertainty's components where the registration has them (for calibration studies).
       for (const char* a : {"UncertaintyLoo", "UncertaintyNearMm", "UncertaintyCorrectionMm", "UncertaintyDilatation",
-                            "UncertaintyFlexureMm"}) {
+                            "UncertaintyFlexureMm", "UncertaintyCurvature"}) {
         const double v = forward.SourceValue(a, t);
         if (std::isfinite(v)) row[a] = v;
       }

@@ -234,7 +234,8 @@ void Run(cli::ModuleContext& ctx) {
     const std::pair<const char*, const Eigen::VectorXd*> uarrays[] = {
         {"Uncertainty", &U.median}, {"Uncertainty90", &U.bound90}, {"UncertaintyLoo", &U.components.loo},
         {"UncertaintyNearMm", &U.components.nearMm}, {"UncertaintyCorrectionMm", &U.components.correctionMm},
-        {"UncertaintyDilatation", &U.components.dilatation}, {"UncertaintyFlexureMm", &U.components.flexureMm}};
+        {"UncertaintyDilatation", &U.components.dilatation}, {"UncertaintyFlexureMm", &U.components.flexureMm},
+        {"UncertaintyCurvature", &U.components.curvature}};
     for (const auto& [name, values] : uarrays) {
       sp.pointData[name] = DataArray{*values, false};
       pp.pointData[name] = DataArray{Interpolate(r.inverse, s.flat.F, *values), false};
