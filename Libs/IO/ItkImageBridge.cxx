@@ -9,8 +9,10 @@
 #include <itkImageFileReader.h>
 #include <itkImageFileWriter.h>
 #include <itkImageSeriesReader.h>
+#include <itkMetaDataObject.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
@@ -32,6 +34,12 @@ std::string OneLine(const itk::ExceptionObject& e) {
 // In-process, Slicer hands over images as "slicer:0x..#vtkMRMLScalarVolumeNode1", which only
 // its own ImageIO (registered with ITK's factory) understands.
 bool IsHostPath(const std::string& path) { return path.rfind("slicer:", 0) == 0; }
+
+std::string Millimetres(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.2f", v);
+  return b;
+}
 
 template <typename T>
 typename ItkImage<T>::Pointer ReadDicomSeries(const std::string& folder, const std::string& what) {
@@ -62,7 +70,16 @@ typename ItkImage<T>::Pointer ReadDicomSeries(const std::string& folder, const s
   reader->SetImageIO(itk::GDCMImageIO::New());
   reader->SetFileNames(names->GetFileNames(best));
   reader->Update();
-  return reader->GetOutput();
+  // A missing slice or uneven slice positions: ITK averages the z spacing and only warns (issue
+  // 24); a measurement along z would then be wrong without a word.
+  typename ItkImage<T>::Pointer image = reader->GetOutput();
+  double deviation = 0.0;
+  if (itk::ExposeMetaData<double>(image->GetMetaDataDictionary(), "ITK_non_uniform_sampling_deviation", deviation) &&
+      deviation > 0.1 * image->GetSpacing()[2])
+    throw InputError(what, folder, "slices are not evenly spaced (a slice missing or out of place): positions deviate by " +
+                                       Millimetres(deviation) + " mm from the mean spacing " +
+                                       Millimetres(image->GetSpacing()[2]) + " mm");
+  return image;
 }
 
 // ITK's NRRD reader takes a NaN spacing, direction or origin as "unknown" and silently uses 1 mm
@@ -89,6 +106,9 @@ void CheckNrrdHeader(const std::string& path, const std::string& what) {
 template <typename T>
 void ItkReadImage(const std::string& path, const std::string& what, ImageGeometry& g, std::vector<T>& voxels) {
   if (path.empty()) throw Error(what + ": no file given");
+  // ITK's warnings (several lines on stderr) must not come before our one line (issue 24); what
+  // matters in them is checked here and said in that line.
+  itk::Object::GlobalWarningDisplayOff();
   std::error_code ec;
   if (!IsHostPath(path) && !fs::exists(path, ec)) throw InputError(what, path, "file does not exist");
   if (!IsHostPath(path)) CheckNrrdHeader(path, what);

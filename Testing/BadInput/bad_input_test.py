@@ -8,7 +8,8 @@ flat segment whose FlatUV holds NaN (ColonRegistration spun for minutes), a regi
 NaN barycentric coordinates or a triangle naming a point past the end (ColonTransferPoints moved
 findings by up to 24 mm), .fcsv findings with NaN, infinite or unit-suffixed coordinates ("12.3mm"
 was read as 12.3), a findings file without points (was an empty output and exit 0), and NIfTI CTs
-with zero or NaN spacing or cut short (read as 1 mm, or as a partial image).
+with zero or NaN spacing or cut short (read as 1 mm, or as a partial image), and a DICOM series with
+a slice missing (its z spacing was averaged without a word).
 
 Usage: bad_input_test.py <cli-modules folder> <TestData folder>
 """
@@ -208,6 +209,23 @@ try:
         nifti(path, **kwargs)
         out = os.path.join(work, label.replace(" ", "_") + "_cleansed.nrrd")
         expect_refused(f"NIfTI with a {label}", "ColonCleansing", [path, out], path, words, [out])
+
+    # A DICOM series with a slice missing (ITK averaged the z spacing and only warned).
+    shared = os.path.join(os.path.dirname(os.path.abspath(__file__)), *[".."] * 3, "shared", "data",
+                          "totalseg-example-ct", "example_ct_dicom")
+    if os.path.isdir(shared):
+        series = os.path.join(work, "dicom-missing")
+        files = sorted(os.listdir(shared))
+        os.makedirs(series)
+        for f in files:
+            shutil.copy(os.path.join(shared, f), series)
+        middle = files[len(files) // 2]  # the names number the slices in order: this one is inside the stack
+        os.remove(os.path.join(series, middle))
+        out = os.path.join(work, "dicom_cleansed.nrrd")
+        expect_refused("DICOM series with a slice missing", "ColonCleansing", [series, out], series,
+                       ["not evenly spaced"], [out])
+    else:
+        check(False, f"no shared DICOM series at {shared}")
 finally:
     shutil.rmtree(work, ignore_errors=True)
 
