@@ -195,7 +195,6 @@ void Run(cli::ModuleContext& ctx) {
 
   std::vector<TriangleMesh> supineParts, proneParts;
   std::vector<SegmentRegistration> regs;
-  std::vector<Eigen::MatrixXi> supineFaces;
   const bool flexuresJoint = FlexuresJoint(sreport) && FlexuresJoint(preport);
   json segments;
   long flips = 0;
@@ -318,7 +317,6 @@ void Run(cli::ModuleContext& ctx) {
                       std::to_string(r.flatFlips) + "/" + std::to_string(r.surfaceFlips) + ", K mean " +
                       cli::FormatNumber(K.mean()) + "; times: " + steps);
     regs.push_back(std::move(r));
-    supineFaces.push_back(s.flat.F);
     ctx.progress.EndStage();
   }
 
@@ -344,7 +342,7 @@ void Run(cli::ModuleContext& ctx) {
     supineParts[k].pointData["Reliable"] = DataArray{reliable, true};
     // Prone vertices: as the supine point they come from (the nearest of the three).
     const auto toProne = [&](const Eigen::VectorXd& flag) -> Eigen::VectorXd {
-      return Interpolate(r.inverse, supineFaces[k], flag).col(0).unaryExpr([](double x) { return x >= 0.5 ? 1.0 : 0.0; });
+      return Interpolate(r.inverse, supineParts[k].F, flag).col(0).unaryExpr([](double x) { return x >= 0.5 ? 1.0 : 0.0; });
     };
     proneParts[k].pointData["Trusted"] = DataArray{toProne(trusted), true};
     proneParts[k].pointData["Reliable"] = DataArray{toProne(reliable), true};
