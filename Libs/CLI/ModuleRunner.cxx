@@ -1,5 +1,7 @@
 #include "CLI/ModuleRunner.h"
 
+#include "CLI/OutputFolder.h"
+
 #include "Core/Error.h"
 
 #include <cstdio>
@@ -66,6 +68,9 @@ int RunModule(const char* moduleName, const char* xml, int argc, char** argv, Mo
                                   : ::isatty(::fileno(stdout)) ? Progress::Style::Terminal
                                                                : Progress::Style::SlicerTags;
     if (args.echo) Echo(description, args, stdout);
+    // Before any work: "." (Slicer's unset folder), "/", someone else's folder (issue 23). Nested
+    // runs are not checked: their folders are the pipeline's own, made by it.
+    CheckOutputFolders(description, args);
     Progress progress(moduleName, style, info, stdout);
     OutputTransaction outputs;
     ModuleContext ctx{moduleName, description, args, progress, outputs, {}};

@@ -7,6 +7,7 @@
 #include <vtkCellData.h>
 #include <vtkCommand.h>
 #include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
 #include <vtkIdList.h>
 #include <vtkIntArray.h>
 #include <vtkLogger.h>
@@ -120,7 +121,7 @@ void ReadArrays(vtkDataSetAttributes* attributes, std::map<std::string, DataArra
   }
 }
 
-void WriteArrays(const std::map<std::string, DataArray>& arrays, vtkDataSetAttributes* attributes) {
+void WriteArrays(const std::map<std::string, DataArray>& arrays, vtkFieldData* attributes) {
   for (const auto& [name, d] : arrays) {
     vtkSmartPointer<vtkDataArray> array;
     if (d.integer) array = vtkSmartPointer<vtkIntArray>::New();
@@ -132,6 +133,23 @@ void WriteArrays(const std::map<std::string, DataArray>& arrays, vtkDataSetAttri
       for (Eigen::Index c = 0; c < d.values.cols(); ++c)
         array->SetComponent(i, static_cast<int>(c), d.values(i, c));
     attributes->AddArray(array);
+  }
+}
+
+// Field data: each array keeps its own number of tuples.
+void ReadFieldArrays(vtkFieldData* field, FieldArrays& arrays) {
+  if (!field) return;
+  for (int a = 0; a < field->GetNumberOfArrays(); ++a) {
+    vtkDataArray* array = field->GetArray(a);  // null for string arrays
+    if (!array || !array->GetName()) continue;
+    DataArray d;
+    d.integer = array->GetDataType() != VTK_FLOAT && array->GetDataType() != VTK_DOUBLE;
+    const vtkIdType n = array->GetNumberOfTuples();
+    const int k = array->GetNumberOfComponents();
+    d.values.resize(n, k);
+    for (vtkIdType i = 0; i < n; ++i)
+      for (int c = 0; c < k; ++c) d.values(i, c) = array->GetComponent(i, c);
+    arrays[array->GetName()] = std::move(d);
   }
 }
 
@@ -195,6 +213,8 @@ void CheckFinitePoints(const Eigen::MatrixXd& V, const std::string& path, const 
       throw InputError(what, path, "point " + std::to_string(i) + " has a NaN or infinite coordinate");
 }
 
+}  // namespace
+
 void CheckMesh(const TriangleMesh& mesh, const std::string& path, const std::string& what) {
   CheckFinitePoints(mesh.V, path, what);
   const Eigen::Index n = mesh.V.rows();
@@ -209,9 +229,9 @@ void CheckMesh(const TriangleMesh& mesh, const std::string& path, const std::str
         throw InputError(what, path, "array " + name + " holds NaN values");
 }
 
-}  // namespace
+TriangleMesh ReadMesh(const std::string& path, const std::string& what) { return ReadMesh(path, what, nullptr); }
 
-TriangleMesh ReadMesh(const std::string& path, const std::string& what) {
+TriangleMesh ReadMesh(const std::string& path, const std::string& what, FieldArrays* fieldData) {
   vtkSmartPointer<vtkPolyData> data = ReadPolyData(path, what);
   TriangleMesh mesh;
   mesh.V = FromPoints(data->GetPoints());
@@ -247,10 +267,18 @@ TriangleMesh ReadMesh(const std::string& path, const std::string& what) {
     }
   }
   CheckMesh(mesh, path, what);
+  if (fieldData) {
+    fieldData->clear();
+    ReadFieldArrays(data->GetFieldData(), *fieldData);
+  }
   return mesh;
 }
 
 void WriteMesh(const TriangleMesh& mesh, const std::string& path, const std::string& what) {
+  WriteMesh(mesh, path, what, FieldArrays{});
+}
+
+void WriteMesh(const TriangleMesh& mesh, const std::string& path, const std::string& what, const FieldArrays& fieldData) {
   vtkNew<vtkPolyData> data;
   data->SetPoints(ToPoints(mesh.V));
   vtkNew<vtkCellArray> polys;
@@ -263,6 +291,7 @@ void WriteMesh(const TriangleMesh& mesh, const std::string& path, const std::str
   data->SetPolys(polys);
   WriteArrays(mesh.pointData, data->GetPointData());
   WriteArrays(mesh.cellData, data->GetCellData());
+  WriteArrays(fieldData, data->GetFieldData());
   WritePolyData(data, path, what);
 }
 

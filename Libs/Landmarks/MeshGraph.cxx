@@ -1,10 +1,6 @@
 #include "MeshGraph.h"
 
-#include <boost/graph/compressed_sparse_row_graph.hpp>
-#include <boost/graph/dijkstra_shortest_paths.hpp>
-
 #include <algorithm>
-#include <limits>
 
 namespace colonmap::landmarks {
 
@@ -23,65 +19,6 @@ EdgeGraph MeshEdgeGraph(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   for (std::size_t e = 0; e < g.edges.size(); ++e)
     g.lengths[e] = (V.row(g.edges[e].first) - V.row(g.edges[e].second)).norm();
   return g;
-}
-
-std::vector<double> ShortestPaths(const EdgeGraph& g, const std::vector<int>& sources,
-                                  const std::vector<double>* weights, std::vector<int>* predecessor) {
-  using Graph = boost::compressed_sparse_row_graph<boost::directedS, boost::no_property,
-                                                   boost::property<boost::edge_weight_t, double>>;
-  // Both directions of every edge, plus a virtual vertex n joined to every source by a zero edge
-  // (a multi-source Dijkstra with the stock algorithm).
-  const int n = g.vertices;
-  std::vector<std::pair<int, int>> arcs;
-  std::vector<double> w;
-  arcs.reserve(g.edges.size() * 2 + sources.size());
-  w.reserve(arcs.capacity());
-  for (std::size_t e = 0; e < g.edges.size(); ++e) {
-    const double we = weights ? (*weights)[e] : g.lengths[e];
-    arcs.emplace_back(g.edges[e].first, g.edges[e].second);
-    w.push_back(we);
-    arcs.emplace_back(g.edges[e].second, g.edges[e].first);
-    w.push_back(we);
-  }
-  for (int s : sources) {
-    arcs.emplace_back(n, s);
-    w.push_back(0.0);
-  }
-  // The CSR constructor wants arcs sorted by source; sort arcs and weights together.
-  std::vector<std::size_t> order(arcs.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return arcs[a] < arcs[b]; });
-  std::vector<std::pair<int, int>> sortedArcs(arcs.size());
-  std::vector<double> sortedW(arcs.size());
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    sortedArcs[i] = arcs[order[i]];
-    sortedW[i] = w[order[i]];
-  }
-  Graph graph(boost::edges_are_sorted, sortedArcs.begin(), sortedArcs.end(), sortedW.begin(),
-              static_cast<std::size_t>(n + 1));
-  std::vector<double> dist(static_cast<std::size_t>(n + 1), std::numeric_limits<double>::infinity());
-  std::vector<std::size_t> pred(static_cast<std::size_t>(n + 1));
-  boost::dijkstra_shortest_paths(
-      graph, static_cast<std::size_t>(n),
-      boost::predecessor_map(boost::make_iterator_property_map(pred.begin(), boost::get(boost::vertex_index, graph)))
-          .distance_map(boost::make_iterator_property_map(dist.begin(), boost::get(boost::vertex_index, graph))));
-  if (predecessor) {
-    predecessor->resize(static_cast<std::size_t>(n));
-    for (int v = 0; v < n; ++v) {
-      const std::size_t p = pred[static_cast<std::size_t>(v)];
-      (*predecessor)[static_cast<std::size_t>(v)] = p == static_cast<std::size_t>(n) ? v : static_cast<int>(p);
-    }
-  }
-  dist.resize(static_cast<std::size_t>(n));
-  return dist;
-}
-
-std::vector<int> PathTo(const std::vector<int>& predecessor, int target) {
-  std::vector<int> path{target};
-  while (predecessor[static_cast<std::size_t>(path.back())] != path.back())
-    path.push_back(predecessor[static_cast<std::size_t>(path.back())]);
-  std::reverse(path.begin(), path.end());
-  return path;
 }
 
 }  // namespace colonmap::landmarks

@@ -2,6 +2,7 @@
 
 #include "CenterlineCurve.h"
 #include "PhantomCenterline.h"
+#include "Collapse.h"
 #include "Random.h"
 
 #include <algorithm>
@@ -304,7 +305,16 @@ ColonAnatomy MakeAnatomy(const PhantomOptions& options) {
     }
     a.evaluationSites.push_back(e);
   }
+
+  // 8. Collapsed stretches (their own stream: the rest of the anatomy does not change).
+  a.collapses = DrawCollapses(a, options.collapses, options.seed);
   return a;
+}
+
+const CollapsedStretch* ColonAnatomy::CollapsedAt(double s, Posture posture) const {
+  for (const CollapsedStretch& c : collapses)
+    if (s >= c.s0 && s <= c.s1 && (posture == Posture::Supine ? c.supine : c.prone)) return &c;
+  return nullptr;
 }
 
 }  // namespace phantom

@@ -51,6 +51,14 @@ struct Polyp {
   double footRadius = 3.6;  // radius of the bump's base in the (s, R0*theta) plane (mm)
 };
 
+// A stretch of colon whose lumen is closed (collapsed or poorly distended: wall touching, no
+// air) in one scan or both (issue 21). Material s; the true wall still runs through it.
+struct CollapsedStretch {
+  double s0 = 0.0, s1 = 0.0;  // material s range (mm)
+  bool supine = false, prone = false;  // collapsed in this scan
+  int segment = 0;            // segment of its middle
+};
+
 struct EvaluationSite {
   std::string label;  // "E001"...
   double s = 0.0, theta = 0.0;
@@ -73,6 +81,10 @@ struct ColonAnatomy {
   // Prone arc-length remap at deformation 1: relative shifts of the knots at 1/4, 1/2, 3/4 of
   // each segment (segment-major), in units of a quarter segment length.
   std::array<double, 15> proneStretch{};
+  std::vector<CollapsedStretch> collapses;  // options.collapses of them, sorted by s
+
+  // The stretch collapsed in this posture that contains material s, or nullptr.
+  const CollapsedStretch* CollapsedAt(double s, Posture posture) const;
 
   int SegmentOf(double s) const;
   double BaseRadius(double s) const { return radius(s); }

@@ -20,6 +20,12 @@ std::string SiteDescription(const ScanGeometry& scan, double s, double theta) {
   return buf;
 }
 
+// With collapses (issue 21) every wall point says whether this scan's lumen is closed there.
+std::string CollapseNote(const ScanGeometry& scan, double s) {
+  if (scan.anatomy.collapses.empty()) return "";
+  return scan.anatomy.CollapsedAt(s, scan.posture) ? " collapsed=true" : " collapsed=false";
+}
+
 int Count(double length, double step) { return std::max(2, static_cast<int>(std::lround(length / std::max(step, 1e-3))) + 1); }
 
 }  // namespace
@@ -104,7 +110,7 @@ MarkupList Polyps(const ScanGeometry& scan) {
     std::snprintf(buf, sizeof buf, "type=%s diameter=%.2f segment=%s s=%.4f theta=%.6f",
                   q.pedunculated ? "pedunculated" : "sessile", q.diameter, SegmentName(scan.anatomy.SegmentOf(q.s)), q.s,
                   q.theta);
-    p.description = buf;
+    p.description = buf + CollapseNote(scan, q.s);
     m.points.push_back(p);
   }
   return m;
@@ -117,7 +123,7 @@ MarkupList EvaluationPoints(const ScanGeometry& scan) {
     ControlPoint p;
     p.label = e.label;
     p.position = scan.WallPoint(e.s, e.theta);
-    p.description = SiteDescription(scan, e.s, e.theta);
+    p.description = SiteDescription(scan, e.s, e.theta) + CollapseNote(scan, e.s);
     m.points.push_back(p);
   }
   return m;

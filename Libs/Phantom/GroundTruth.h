@@ -32,9 +32,10 @@ MarkupList ToMarkups(const CurveSamples& curve);
 // HF, SF, DSJ, RSJ: centreline points; description "s=<material s> u=<arc length>".
 MarkupList Flexures(const ScanGeometry& scan);
 // P1..Pn at the top of each polyp on the lumen-facing surface; description
-// "type=<sessile|pedunculated> diameter=<mm> segment=<A..R> s=<mm> theta=<rad>".
+// "type=<sessile|pedunculated> diameter=<mm> segment=<A..R> s=<mm> theta=<rad>", and with
+// collapses " collapsed=<true|false>" (the lumen of this scan is closed at the point's s).
 MarkupList Polyps(const ScanGeometry& scan);
-// E001... on the wall; description "segment=<A..R> s=<mm> theta=<rad>".
+// E001... on the wall; description "segment=<A..R> s=<mm> theta=<rad>" (and collapsed= as above).
 MarkupList EvaluationPoints(const ScanGeometry& scan);
 
 }  // namespace phantom

@@ -52,6 +52,7 @@ struct PhantomOptions {
   double meshStepMm = 1.0;             // true-wall grid step along s
   int meshPointsAround = 160;          // true-wall grid points around (theta)
   int evaluationPoints = 200;          // evaluation wall points E001...
+  int collapses = 0;                   // collapsed stretches (issue 21; Collapse.h), 0..4
   TissueModel tissue;
 };
 

@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace colonmap {
 namespace phantom {
@@ -157,6 +158,12 @@ const FluidPool* ScanGeometry::PoolAt(double u) const {
   return nullptr;
 }
 
+double ScanGeometry::CollapseDepth(double u) const {
+  double depth = -std::numeric_limits<double>::infinity();
+  for (const auto& [u0, u1] : collapsedU) depth = std::max(depth, std::min(u - u0, u1 - u));
+  return depth;
+}
+
 ScanGeometry MakeScan(const ColonAnatomy& anatomy, Posture posture, const PhantomOptions& options) {
   ScanGeometry scan;
   scan.anatomy = anatomy;
@@ -166,6 +173,8 @@ ScanGeometry MakeScan(const ColonAnatomy& anatomy, Posture posture, const Phanto
   scan.centerline = SmoothCenterline(anatomy, posture, scan.deformation);
   if (posture == Posture::Prone) MakeProneMaps(scan, points);
   MakePools(scan);
+  for (const CollapsedStretch& c : anatomy.collapses)
+    if (posture == Posture::Supine ? c.supine : c.prone) scan.collapsedU.emplace_back(scan.ArcLength(c.s0), scan.ArcLength(c.s1));
   return scan;
 }
 

@@ -12,6 +12,7 @@
 #include "PhantomOptions.h"
 
 #include <Eigen/Core>
+#include <utility>
 #include <vector>
 
 namespace colonmap {
@@ -36,6 +37,7 @@ class ScanGeometry {
   Pchip twist;                // s -> tau (rad)
   Pchip logDistension, ellipticity, ellipseAngle;  // prone change of the cross-section
   std::vector<FluidPool> pools;
+  std::vector<std::pair<double, double>> collapsedU;  // arc-length ranges of this scan's collapsed stretches
   double fluidHU = 750.0;
 
   double ArcLength(double s) const { return identityRemap ? s : arcOfS(s); }
@@ -64,6 +66,9 @@ class ScanGeometry {
   double Height(const Eigen::Vector3d& p) const { return -Down().dot(p); }
   // Pool whose arc-length range contains u, or nullptr.
   const FluidPool* PoolAt(double u) const;
+  // How far (mm of arc length) u lies inside a collapsed stretch of this scan: positive inside,
+  // negative outside (the distance to the nearest one), -inf without collapses.
+  double CollapseDepth(double u) const;
 };
 
 // Builds a scan's embedding. options.deformation and options.seed (fluid pools) are used.

@@ -74,6 +74,8 @@ void SynthesizeCTOnGrid(const ScanGeometry& scan, const PhantomOptions& options,
         if (const FluidPool* pool = scan.PoolAt(q.u))
           content += (scan.fluidHU - t.airHU) * PartialVolumeStep(pool->level - scan.Height(p), W);
       }
+      // A collapsed stretch: the walls touch, no air or fluid between them.
+      if (!scan.collapsedU.empty()) content += (t.wallHU - content) * PartialVolumeStep(scan.CollapseDepth(q.u), W);
       const double a = PartialVolumeStep(q.innerDistance, W);
       const double b = std::min(a, PartialVolumeStep(q.outerDistance, W));
       hu = (1.0 - a) * content + (a - b) * t.wallHU + b * outside;

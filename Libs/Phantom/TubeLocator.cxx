@@ -154,7 +154,7 @@ TubeSample TubeLocator::Query(const Eigen::Vector3d& p) const {
 
 bool TubeLocator::IsLumen(const Eigen::Vector3d& p) const {
   const TubeSample t = Query(p);
-  return t.near && t.innerDistance < 0.0;
+  return t.near && t.innerDistance < 0.0 && !(scan_->CollapseDepth(t.u) > 0.0);
 }
 
 }  // namespace phantom

@@ -34,7 +34,7 @@ class TubeLocator {
   TubeLocator(const ScanGeometry& scan, double wallThicknessMm, double bandMm, double cellMm = 6.0);
 
   TubeSample Query(const Eigen::Vector3d& p) const;
-  // Inside the lumen (air or fluid) of the closed tube (with end caps).
+  // Inside the lumen (air or fluid) of the closed tube (with end caps), outside collapsed stretches.
   bool IsLumen(const Eigen::Vector3d& p) const;
 
   const ScanGeometry& Scan() const { return *scan_; }

@@ -7,6 +7,7 @@
 #include "Surface/InsideMask.h"
 
 
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
@@ -151,6 +152,60 @@ Volume<unsigned char> FluidPools(const MeshScan& scan, const Volume<unsigned cha
   return grown;
 }
 
+// How far (mm of material s) each voxel lies inside a collapsed stretch (positive inside; -inf
+// where no voxel needs it), for the lumen and the band outside it: each voxel takes the s of the
+// axis point it is reached from first by a breadth-first flood through the lumen (face
+// neighbours), started at the voxels of the axis points, and the band voxels that of the lumen
+// voxel nearest in the same way. Through the lumen, not across the wall: a voxel next to a
+// touching loop takes its own loop's s.
+std::vector<float> CollapseDepth(const MeshScan& scan, const Volume<short>& grid, const Volume<unsigned char>& mask,
+                                 const std::vector<float>& dist, double limitOut) {
+  const std::size_t n = grid.NumberOfVoxels();
+  if (scan.axis.rows() != scan.axisS.size() || scan.axis.rows() < 2)
+    throw Error("mesh CT: the axis and its material s differ in length");
+  std::vector<float> s(n, std::numeric_limits<float>::quiet_NaN());
+  std::deque<std::size_t> queue;
+  for (Eigen::Index a = 0; a < scan.axis.rows(); ++a) {
+    const Eigen::Vector3d idx = grid.PhysicalToIndex(scan.axis.row(a).transpose());
+    const long i = std::lround(idx.x()), j = std::lround(idx.y()), k = std::lround(idx.z());
+    if (i < 0 || j < 0 || k < 0 || i >= long(grid.size[0]) || j >= long(grid.size[1]) || k >= long(grid.size[2])) continue;
+    const std::size_t v = grid.Offset(std::size_t(i), std::size_t(j), std::size_t(k));
+    if (!mask.voxels[v] || !std::isnan(s[v])) continue;
+    s[v] = static_cast<float>(scan.axisS(a));
+    queue.push_back(v);
+  }
+  const long sx = 1, sy = long(grid.size[0]), sz = long(grid.size[0] * grid.size[1]);
+  // Two floods: through the lumen first, then from it into the band outside. The band is shared
+  // by loops that touch: a flood through it would hand a voxel by the wall the other loop's s.
+  const auto flood = [&](const auto& allowed) {
+    while (!queue.empty()) {
+      const std::size_t v = queue.front();
+      queue.pop_front();
+      const std::size_t i = v % grid.size[0], j = (v / grid.size[0]) % grid.size[1], k = v / (grid.size[0] * grid.size[1]);
+      const bool ok[6] = {i > 0, i + 1 < grid.size[0], j > 0, j + 1 < grid.size[1], k > 0, k + 1 < grid.size[2]};
+      const long step[6] = {-sx, sx, -sy, sy, -sz, sz};
+      for (int d = 0; d < 6; ++d) {
+        if (!ok[d]) continue;
+        const std::size_t w = static_cast<std::size_t>(long(v) + step[d]);
+        if (!std::isnan(s[w]) || !allowed(w)) continue;
+        s[w] = s[v];
+        queue.push_back(w);
+      }
+    }
+  };
+  flood([&](std::size_t w) { return mask.voxels[w] != 0; });
+  for (std::size_t v = 0; v < n; ++v)
+    if (mask.voxels[v] && !std::isnan(s[v])) queue.push_back(v);
+  flood([&](std::size_t w) { return !mask.voxels[w] && dist[w] < limitOut; });
+  std::vector<float> depth(n, -std::numeric_limits<float>::infinity());
+  for (std::size_t v = 0; v < n; ++v) {
+    if (std::isnan(s[v])) continue;
+    for (const auto& [s0, s1] : scan.collapsedS)
+      depth[v] = std::max(depth[v], static_cast<float>(std::min(s[v] - s0, s1 - s[v])));
+  }
+  return depth;
+}
+
 void SynthesizeMeshCT(const MeshScan& scan, const phantom::PhantomOptions& options, Volume<short>& grid,
                       ProgressSink& progress) {
   if (!scan.lumen || scan.lumen->F.rows() == 0) throw Error("mesh CT: no lumen surface");
@@ -163,6 +218,8 @@ void SynthesizeMeshCT(const MeshScan& scan, const phantom::PhantomOptions& optio
   progress.Report(0.15);
   const std::vector<float> dist = BandDistance(*scan.lumen, grid, mask, limitIn, limitOut, progress, 0.15, 0.7);
   const Volume<unsigned char> pools = options.fluid && !scan.pools.empty() ? FluidPools(scan, mask, W) : mask.Like<unsigned char>(0);
+  const std::vector<float> collapse =
+      scan.collapsedS.empty() ? std::vector<float>() : CollapseDepth(scan, grid, mask, dist, limitOut);
   progress.Report(0.75);
   grid.Allocate(0);
   SubProgress rest(progress, 0.75, 1.0);
@@ -177,6 +234,8 @@ void SynthesizeMeshCT(const MeshScan& scan, const phantom::PhantomOptions& optio
       double content = t.airHU;
       if (const unsigned char id = pools.voxels[v])
         content += (scan.fluidHU - t.airHU) * phantom::PartialVolumeStep(scan.pools[id - 1].level + scan.down.dot(p), W);
+      // A collapsed stretch: the walls touch, no air or fluid between them.
+      if (!collapse.empty()) content += (t.wallHU - content) * phantom::PartialVolumeStep(collapse[v], W);
       const double a = phantom::PartialVolumeStep(d, W);
       const double b = std::min(a, phantom::PartialVolumeStep(d - t.wallThicknessMm, W));
       hu = (1.0 - a) * content + (a - b) * t.wallHU + b * outside;

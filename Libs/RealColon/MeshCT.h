@@ -9,7 +9,9 @@
 // rasterised over the voxels of its box, in parallel over slabs of slices. The outer wall is the
 // lumen wall offset by the wall thickness (so loops that touch share one wall). Fluid: each pool
 // is the lumen below a flat level connected to the pool's seed (flood fill), with the level's
-// partial volume; the wall voxels next to it get the fluid of their lumen part.
+// partial volume; the wall voxels next to it get the fluid of their lumen part. Collapsed
+// stretches: the lumen holds wall (soft tissue) instead of air and fluid, with the
+// partial-volume step along s at both ends.
 #include "Core/Cancel.h"
 #include "Core/TriangleMesh.h"
 #include "Core/Volume.h"
@@ -17,6 +19,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace colonmap::realcolon {
@@ -32,6 +35,12 @@ struct MeshScan {
   std::vector<FluidPoolSpec> pools;
   double fluidHU = 750.0;
   std::uint64_t noiseKey = 0;           // seed of the noise (differs per scan)
+  // Collapsed stretches (issue 21): material s ranges where the lumen is closed. A voxel takes
+  // the material s of the point of this scan's axis (one point per material level, its s in
+  // axisS) it is reached from first through the lumen.
+  Eigen::MatrixXd axis;
+  Eigen::VectorXd axisS;
+  std::vector<std::pair<double, double>> collapsedS;
 };
 
 // CT on `grid` (origin, spacing, size set; identity direction): int16 HU. options.tissue and

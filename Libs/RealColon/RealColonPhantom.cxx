@@ -2,6 +2,7 @@
 
 #include "Analysis/MidlineProjection.h"
 #include "Core/Error.h"
+#include "Phantom/Collapse.h"
 #include "Phantom/PoolPlacement.h"
 #include "Phantom/Random.h"
 #include "Phantom/SynthesizeCT.h"
@@ -440,6 +441,13 @@ RealColonPair MakeRealColonPair(ColonSource source, const RealColonOptions& opti
   sup.closed = pair.material.closed;
   pair.polyps = PlacePolyps(sup.closed, pair.material, pair.flexureS, seed);
   pair.sites = PlaceSites(sup.closed, pair.material, pair.flexureS, pair.polyps, options.phantom.evaluationPoints, seed);
+  {
+    // The tube phantom's draw of collapsed stretches, on this colon's flexures and length.
+    phantom::ColonAnatomy frame;
+    frame.length = pair.material.length;
+    frame.flexureS = pair.flexureS;
+    pair.collapses = phantom::DrawCollapses(frame, options.phantom.collapses, seed);
+  }
   timer.Lap("polyps and evaluation points");
   progress.Report(0.55);
 
@@ -521,9 +529,25 @@ Volume<short> RealColonCT(const RealColonPair& pair, Posture posture, const Real
   ms.pools = scan.pools;
   ms.fluidHU = scan.fluidHU;
   ms.noiseKey = scan.noiseKey;
+  if (!pair.collapses.empty()) {
+    ms.axis = scan.centreline.points;
+    ms.axisS = pair.material.levelS;
+  }
+  for (const phantom::CollapsedStretch& c : pair.collapses)
+    if (posture == Posture::Supine ? c.supine : c.prone) ms.collapsedS.emplace_back(c.s0, c.s1);
   SynthesizeMeshCT(ms, o, grid, progress);
   return grid;
 }
+
+namespace {
+// As the tube's (Phantom/GroundTruth.h): with collapses, whether this scan's lumen is closed at s.
+std::string CollapseNote(const RealColonPair& pair, Posture posture, double s) {
+  if (pair.collapses.empty()) return "";
+  for (const phantom::CollapsedStretch& c : pair.collapses)
+    if (s >= c.s0 && s <= c.s1 && (posture == Posture::Supine ? c.supine : c.prone)) return " collapsed=true";
+  return " collapsed=false";
+}
+}  // namespace
 
 MarkupList RealPolypMarkups(const RealColonPair& pair, Posture posture) {
   const RealColonScan& scan = posture == Posture::Supine ? pair.supine : pair.prone;
@@ -536,7 +560,7 @@ MarkupList RealPolypMarkups(const RealColonPair& pair, Posture posture) {
     char buf[160];
     std::snprintf(buf, sizeof buf, "type=%s diameter=%.2f segment=%s s=%.4f theta=%.6f",
                   q.pedunculated ? "pedunculated" : "sessile", q.diameter, phantom::SegmentName(q.segment), q.s, q.theta);
-    p.description = buf;
+    p.description = buf + CollapseNote(pair, posture, q.s);
     m.points.push_back(p);
   }
   return m;
@@ -552,7 +576,7 @@ MarkupList RealEvaluationMarkups(const RealColonPair& pair, Posture posture) {
     p.position = scan.SitePosition(e);
     char buf[96];
     std::snprintf(buf, sizeof buf, "segment=%s s=%.4f theta=%.6f", phantom::SegmentName(e.segment), e.s, e.theta);
-    p.description = buf;
+    p.description = buf + CollapseNote(pair, posture, e.s);
     m.points.push_back(p);
   }
   return m;

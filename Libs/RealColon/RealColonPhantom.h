@@ -15,6 +15,7 @@
 #include "Core/Markups.h"
 #include "Core/TriangleMesh.h"
 #include "Core/Volume.h"
+#include "Phantom/ColonAnatomy.h"
 #include "Phantom/Dilatation.h"
 #include "Phantom/PhantomOptions.h"
 #include "RealColon/ColonFlow.h"
@@ -94,6 +95,7 @@ struct RealColonPair {
   TubeMaterial material;          // on the supine surface (tube vertices = wall vertices)
   std::array<double, 4> flexureS{};  // HF, SF, DSJ, RSJ (material s)
   std::vector<RealPolyp> polyps;
+  std::vector<phantom::CollapsedStretch> collapses;  // options.phantom.collapses (Phantom/Collapse.h)
   std::vector<RealSite> sites;
   ColonFlow flow;
   RealColonScan supine, prone;

@@ -1,7 +1,10 @@
 #include "Registration/PointTransfer.h"
 
+#include "Registration/WallVisibility.h"
+
 #include "Core/Error.h"
 #include "IO/MeshIO.h"
+#include "Registration/EmbeddedProneMesh.h"
 #include "Surface/MeanCurvature.h"
 #include "Surface/VtkConversion.h"
 
@@ -14,6 +17,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <optional>
 
 namespace colonmap::registration {
 
@@ -25,6 +29,7 @@ struct PointTransfer::Impl {
   vtkNew<vtkPolyData> sourcePoly, targetPoly;
   vtkNew<vtkCellLocator> sourceLocator, targetLocator;
   Eigen::VectorXd segment, dilatation;
+  std::unique_ptr<WallVisibility> sourceWall, targetWall;
 };
 
 namespace {
@@ -69,6 +74,8 @@ PointTransfer::PointTransfer(const TriangleMesh& source, const TriangleMesh& tar
   }
   I.sourceNormals = surface::VertexNormals(source.V, source.F);
   I.targetNormals = surface::VertexNormals(target.V, target.F);
+  I.sourceWall = std::make_unique<WallVisibility>(I.source);
+  I.targetWall = std::make_unique<WallVisibility>(I.target);
   if (auto it = source.pointData.find("SegmentId"); it != source.pointData.end()) I.segment = it->second.values.col(0);
   if (auto it = source.cellData.find("Dilatation"); it != source.cellData.end()) I.dilatation = it->second.values.col(0);
   surface::ToPolyData(source, I.sourcePoly);
@@ -84,14 +91,28 @@ PointTransfer::~PointTransfer() = default;
 RegistrationMeshes ReadRegistration(const std::string& path, const std::string& pronePath) {
   namespace fs = std::filesystem;
   if (!fs::is_regular_file(path)) throw InputError("registration", path, fs::exists(path) ? "is not a file" : "does not exist");
-  const fs::path prone = pronePath.empty() ? fs::path(path).parent_path() / "registration_prone.vtp" : fs::path(pronePath);
-  if (!pronePath.empty() && !fs::is_regular_file(prone))
-    throw InputError("prone registration mesh", pronePath, fs::exists(prone) ? "is not a file" : "does not exist");
-  if (!fs::is_regular_file(prone))
-    throw InputError("registration", path, "has no registration_prone.vtp beside it (ColonRegistration writes both)");
+  if (!pronePath.empty() && !fs::is_regular_file(pronePath))
+    throw InputError("prone registration mesh", pronePath, fs::exists(pronePath) ? "is not a file" : "does not exist");
   RegistrationMeshes r;
-  r.supine = io::ReadMesh(path, "registration");
-  r.prone = io::ReadMesh(prone.string(), "prone registration mesh");
+  io::FieldArrays field;
+  r.supine = io::ReadMesh(path, "registration", &field);
+  // An explicit prone mesh wins; else the copy inside registration.vtp (bound to this very file,
+  // so a stale sibling cannot be picked up); else, for registrations written before issue 23,
+  // registration_prone.vtp beside it.
+  if (!pronePath.empty()) {
+    r.prone = io::ReadMesh(pronePath, "prone registration mesh");
+    return r;
+  }
+  if (std::optional<TriangleMesh> embedded = EmbeddedProneMesh(field, path)) {
+    r.prone = std::move(*embedded);
+    return r;
+  }
+  const fs::path sibling = fs::path(path).parent_path() / "registration_prone.vtp";
+  if (!fs::is_regular_file(sibling))
+    throw InputError("registration", path,
+                     "carries no prone mesh (written by an older ColonRegistration: run it again, or give --proneMesh) and "
+                     "has no registration_prone.vtp beside it");
+  r.prone = io::ReadMesh(sibling.string(), "prone registration mesh");
   return r;
 }
 
@@ -156,6 +177,18 @@ TransferredPoint PointTransfer::Transfer(const Eigen::Vector3d& p) const {
   }
   // Reliable (0/1 per vertex, ColonRegistration): as the nearest of the face's vertices.
   if (const double r = SourceValue("Reliable", t); std::isfinite(r)) t.reliable = r >= 0.5;
+  // Virtual wall (a bridged collapse) in either scan: no true position there.
+  t.sourceVirtual = I.sourceWall->VirtualAt(t.sourceFace, t.sourceBary) >= 0.5;
+  t.targetVirtual = I.targetWall->VirtualAt(t.targetFace, t.targetBary) >= 0.5;
+  if (t.targetVirtual) {
+    const OpenPlace open = I.targetWall->NearestOpen(t.targetFace, t.targetBary);
+    if (open.vertex >= 0) {
+      t.position = I.target.V.row(open.vertex).transpose() + t.offset * I.targetNormals.row(open.vertex).transpose();
+      t.openDistanceMm = open.alongColonMm;
+    }
+  }
+  t.visible = !t.sourceVirtual && !t.targetVirtual;
+  if (!t.visible) t.reliable = false;
   return t;
 }
 

@@ -30,15 +30,22 @@ struct TransferredPoint {
   double uncertaintyMm = 0.0; // 90% bound of the error (mm), see PointTransfer::Transfer
   double uncertaintyMedianMm = 0.0;  // the predicted median error (mm)
   bool reliable = true;       // false where the registration cannot be trusted (RegistrationReliability.h)
+  // Collapsed stretches (WallVisibility.h): the source foot or its image lies on virtual wall.
+  // A point on virtual target wall is moved to the nearest open wall along the colon
+  // (openDistanceMm away along the colon); either way visible and reliable are false.
+  bool visible = true;
+  bool sourceVirtual = false, targetVirtual = false;
+  double openDistanceMm = 0.0;
 };
 
-// registration.vtp (supine, with the Prone* arrays) and registration_prone.vtp (`pronePath`, or
-// when empty the file of that name beside registration.vtp: Slicer copies inputs to temporary
-// names, so inside Slicer the prone mesh must be passed explicitly).
+// registration.vtp (supine, with the Prone* arrays) and the prone mesh: `pronePath` when given,
+// else the copy registration.vtp carries (EmbeddedProneMesh.h: one file is enough, as in Slicer,
+// which hands over a renamed copy in its own folder), else registration_prone.vtp beside it
+// (registrations written before that copy existed).
 struct RegistrationMeshes {
   TriangleMesh supine, prone;
 };
-// Reads both; throws colonmap::Error naming the file that is missing or unreadable.
+// Reads both; throws colonmap::Error naming the file that is missing, unreadable or inconsistent.
 RegistrationMeshes ReadRegistration(const std::string& registrationPath, const std::string& pronePath = std::string());
 
 class PointTransfer {

@@ -118,7 +118,13 @@ void Findings(const PipelineReportInput& in, HtmlReport& page) {
     };
     rows.push_back({f.value("label", std::string()), vec("supine"), vec("prone"), f.value("segment", std::string("-")),
                     Num(f, "uncertaintyMm", 1),
-                    f.contains("reliable") ? (f["reliable"].get<bool>() ? "yes" : "NO: do not rely on this position") : "-",
+                    !f.value("visible", true)
+                        ? "NO: on wall collapsed in the " + f.value("notSeenIn", std::string("prone")) + " scan" +
+                              (f.contains("alongColonToOpenMm") ? " (placed at the nearest open wall, " + Num(f, "alongColonToOpenMm", 0) +
+                                                                      " mm along the colon)"
+                                                                : std::string())
+                    : f.contains("reliable") ? (f["reliable"].get<bool>() ? "yes" : "NO: do not rely on this position")
+                                             : "-",
                     Num(f, "trueErrorMm", 1)});
   }
   page.Table({"finding", "supine LPS mm", "prone LPS mm", "segment", "90% bound mm", "reliable", "true error mm"}, rows);

@@ -134,6 +134,21 @@ void FlatteningFlags(const StageSummaries& s, const QualityThresholds& t, std::v
 void RegistrationFlags(const StageSummaries& s, const QualityThresholds& t, std::vector<QualityFlag>& flags) {
   const json& r = s.registration;
   if (r.is_null()) return;
+  // Collapsed stretches bridged by virtual lumen (issue 21), when a scan had one.
+  {
+    std::string detail;
+    for (const char* seg : kSegments) {
+      const json segment = r.value("segments", json::object()).value(seg, json());
+      if (!segment.is_object()) continue;
+      for (const auto& [key, scan] : {std::pair{"supineVirtualFraction", "supine"}, std::pair{"proneVirtualFraction", "prone"}})
+        if (const double f = Number(segment, key, 0.0); f > 0.0)
+          detail += std::string(seg) + " " + scan + " " + Fixed(100.0 * f, 0) + "%, ";
+    }
+    if (!detail.empty())
+      flags.push_back({"Colon open in both scans", false,
+                       "wall not seen (collapsed, bridged by virtual lumen): " + detail +
+                           "findings there are marked visible=false and placed at the nearest open wall"});
+  }
   // The registration's own trust of each segment (RegistrationReliability.h), when it says.
   if (r.contains("untrustedSegments") && r["untrustedSegments"].is_string()) {
     const std::string untrusted = r["untrustedSegments"].get<std::string>();

@@ -62,6 +62,107 @@ Crop CropComponent(const Volume<short>& ct, const std::vector<std::uint32_t>& la
   return crop;
 }
 
+// A component kept for the piece analysis: its padded crop (cavities filled) and depth.
+struct Candidate {
+  std::size_t component = 0;
+  Crop crop;
+  std::vector<float> depth;
+  std::size_t filled = 0;
+  Volume<unsigned char> ball;  // the topological ball grown in the crop (handles cut)
+  GrowthStatistics growth;
+};
+
+// Grows the candidate's ball from its deepest voxel, deepest first (step 4); its depth is used up.
+void GrowBall(Candidate& c, ProgressSink& progress) {
+  Volume<float> priority;
+  priority.size = c.crop.mask.size;
+  priority.voxels = std::move(c.depth);
+  const std::size_t seed = static_cast<std::size_t>(
+      std::max_element(priority.voxels.begin(), priority.voxels.end()) - priority.voxels.begin());
+  c.ball = GrowTopologicalBall(c.crop.mask, priority, seed, progress, &c.growth);
+}
+
+// The pieces (in order from the caecum) and the virtual lumen between consecutive ones as one
+// domain on the box of them all; result.bridges and result.bridgeLabel are filled. The bridge
+// radius is half the narrower of the two pieces' inscribed radii, at least two voxels (a
+// thinner tube would not survive the surface stage) and at most 12 mm.
+Candidate BridgePieces(const Volume<short>& ct, const std::vector<Candidate*>& pieces, LumenSegmentation& result,
+                       ProgressSink& progress) {
+  const double maxSpacing = ct.spacing.maxCoeff();
+  std::vector<Bridge> bridges;
+  for (std::size_t k = 0; k + 1 < result.pieces.size(); ++k) {
+    const ColonPiece& a = result.pieces[k];
+    const ColonPiece& b = result.pieces[k + 1];
+    const double ra = result.components[a.component].maxRadiusMm, rb = result.components[b.component].maxRadiusMm;
+    const double radius = std::clamp(0.9 * std::min(ra, rb), 2.0 * maxSpacing, 25.0);
+    bridges.push_back(MakeBridge(a.shape.ends[static_cast<std::size_t>(1 - a.caecalEnd)],
+                                 b.shape.ends[static_cast<std::size_t>(b.caecalEnd)], radius));
+  }
+  // The box: every piece's crop and every bridge sample's ball, inside the image.
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
+  for (const Candidate* c : pieces)
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = std::min(lo[d], double(c->crop.first[d]));
+      hi[d] = std::max(hi[d], double(c->crop.first[d] + c->crop.mask.size[d] - 3));
+    }
+  for (const Bridge& b : bridges)
+    for (const Eigen::Vector3d& p : b.curve) {
+      const Eigen::Vector3d idx = ct.PhysicalToIndex(p);
+      const Eigen::Vector3d r = Eigen::Vector3d::Constant(b.radiusMm).cwiseQuotient(ct.spacing) + Eigen::Vector3d::Ones();
+      lo = lo.cwiseMin(idx - r);
+      hi = hi.cwiseMax(idx + r);
+    }
+  Candidate out;
+  for (int d = 0; d < 3; ++d) {
+    lo[d] = std::clamp(std::floor(lo[d]), 0.0, double(ct.size[d] - 1));
+    hi[d] = std::clamp(std::ceil(hi[d]), 0.0, double(ct.size[d] - 1));
+    out.crop.first[d] = static_cast<std::size_t>(lo[d]);
+    out.crop.mask.size[d] = static_cast<std::size_t>(hi[d] - lo[d]) + 3;
+  }
+  out.crop.mask.spacing = ct.spacing;
+  out.crop.mask.direction = ct.direction;
+  out.crop.mask.origin = ct.IndexToPhysical(lo - Eigen::Vector3d::Ones());
+  out.crop.mask.Allocate(0);
+  for (const Candidate* c : pieces) {
+    const Volume<unsigned char>& m = c->ball;
+    for (std::size_t z = 1; z + 1 < m.size[2]; ++z)
+      for (std::size_t y = 1; y + 1 < m.size[1]; ++y)
+        for (std::size_t x = 1; x + 1 < m.size[0]; ++x)
+          if (m.At(x, y, z))
+            out.crop.mask.At(c->crop.first[0] - out.crop.first[0] + x, c->crop.first[1] - out.crop.first[1] + y,
+                             c->crop.first[2] - out.crop.first[2] + z) = 1;
+  }
+  // Bridge voxels: 2 in the domain (kept apart), 1 once the domain is one mask again.
+  Volume<unsigned char> virtualMask = out.crop.mask.Like<unsigned char>(0);
+  for (const Bridge& b : bridges) {
+    Volume<unsigned char> drawn = out.crop.mask;
+    DrawBridge(b, drawn, 2);
+    for (std::size_t v = 0; v < drawn.voxels.size(); ++v)
+      if (drawn.voxels[v] == 2) virtualMask.voxels[v] = 1;
+  }
+  // The crop's border stays zero (the growth needs it).
+  for (std::size_t z = 0; z < virtualMask.size[2]; ++z)
+    for (std::size_t y = 0; y < virtualMask.size[1]; ++y)
+      for (std::size_t x = 0; x < virtualMask.size[0]; ++x) {
+        const bool border = x == 0 || y == 0 || z == 0 || x + 1 == virtualMask.size[0] || y + 1 == virtualMask.size[1] ||
+                            z + 1 == virtualMask.size[2];
+        unsigned char& v = virtualMask.At(x, y, z);
+        if (border) v = 0;
+        if (v) out.crop.mask.At(x, y, z) = 1;
+      }
+  SubProgress fillStep(progress, 0.0, 0.5), depthStep(progress, 0.5, 1.0);
+  detail::FillCavities6(out.crop.Grid(), out.crop.mask.voxels, fillStep);
+  detail::InsideDistance(out.crop.Grid(), out.crop.mask.voxels.data(), out.depth, depthStep);
+  result.bridgeLabel = ct.Like<unsigned char>(0);
+  for (std::size_t z = 1; z + 1 < virtualMask.size[2]; ++z)
+    for (std::size_t y = 1; y + 1 < virtualMask.size[1]; ++y)
+      for (std::size_t x = 1; x + 1 < virtualMask.size[0]; ++x)
+        if (virtualMask.At(x, y, z))
+          result.bridgeLabel.At(out.crop.first[0] + x - 1, out.crop.first[1] + y - 1, out.crop.first[2] + z - 1) = 1;
+  result.bridges = std::move(bridges);
+  return out;
+}
+
 void CheckOptions(const SegmentationOptions& o) {
   if (!std::isfinite(o.airThresholdHU) || o.airThresholdHU <= -1024.0 || o.airThresholdHU >= 0.0)
     throw Error("air threshold " + Fixed(o.airThresholdHU, 1) + " HU: expected a value between -1024 and 0");
@@ -84,6 +185,7 @@ const char* DecisionName(Decision d) {
     case Decision::TooThick: return "too thick";
     case Decision::NotElongated: return "not elongated";
     case Decision::NotLargest: return "not the largest";
+    case Decision::Piece: return "colon piece";
   }
   return "?";
 }
@@ -190,27 +292,31 @@ LumenSegmentation SegmentColonLumen(const Volume<short>& ct, const SegmentationO
   // 3. Decisions, largest first; shape measured on the component's own padded box.
   result.components.reserve(labelCount);
   bool found = false;
-  Crop colonCrop;
-  std::vector<float> colonDepth;
+  // The colon and the smaller candidates for further pieces keep their crops for 3a and 4.
+  std::vector<Candidate> candidates;  // the colon first
   const AirComponent* largestInside = nullptr;
+  const double measuredFrom = std::min(options.minColonVolumeMl, options.minPieceVolumeMl);
   // The shape analysis shares its part of the progress by component size (monotone progress).
   double analysed = 0.0, toAnalyse = 0.0;
   for (std::uint32_t l : order)
-    if (!touchesSide[l] && !touchesTop[l] && double(byLabel[l].voxels) * voxelMl >= options.minColonVolumeMl)
+    if (!touchesSide[l] && !touchesTop[l] && double(byLabel[l].voxels) * voxelMl >= measuredFrom)
       toAnalyse += double(byLabel[l].voxels);
   for (std::uint32_t l : order) {
     AirComponent c = byLabel[l];
     c.volumeMl = double(c.voxels) * voxelMl;
     c.centroid = ct.IndexToPhysical(indexSum[l] / double(c.voxels));
+    const bool small = c.volumeMl < options.minColonVolumeMl;
+    const std::string smallReason =
+        "below " + Ml(options.minColonVolumeMl) + " (small-bowel gas or an isolated pocket)";
     if (touchesSide[l]) {
       c.decision = Decision::OutsideBody;
       c.reason = "touches a side of the image (air outside the body)";
     } else if (touchesTop[l]) {
       c.decision = Decision::AtSuperiorBorder;
       c.reason = "touches the superior face of the image (lung base)";
-    } else if (c.volumeMl < options.minColonVolumeMl) {
+    } else if (c.volumeMl < measuredFrom) {
       c.decision = Decision::TooSmall;
-      c.reason = "below " + Ml(options.minColonVolumeMl) + " (small-bowel gas or an isolated pocket)";
+      c.reason = smallReason;
     } else {
       // Fill the cavities first: the depth (and the growth below) then sees the whole lumen.
       SubProgress step(progress, 0.45 + 0.17 * analysed / toAnalyse,
@@ -226,7 +332,13 @@ LumenSegmentation SegmentColonLumen(const Volume<short>& ct, const SegmentationO
       // Voxel centres of the boundary layer have depth 0 and lie about half a voxel inside.
       c.maxRadiusMm = double(*std::max_element(depth.begin(), depth.end())) + 0.5 * minSpacing;
       c.elongation = c.volumeMl * 1000.0 / (kPi * c.maxRadiusMm * c.maxRadiusMm) / (2.0 * c.maxRadiusMm);
-      if (c.maxRadiusMm > options.maxColonRadiusMm) {
+      const bool thick = c.maxRadiusMm > options.maxColonRadiusMm;
+      // A piece candidate: not lung-like, and at least a short tube (joined or not in 3a).
+      const bool candidate = !thick && c.volumeMl >= options.minPieceVolumeMl && c.elongation >= options.minPieceElongation;
+      if (small) {
+        c.decision = Decision::TooSmall;
+        c.reason = smallReason;
+      } else if (thick) {
         c.decision = Decision::TooThick;
         c.reason = "inscribed radius " + Fixed(c.maxRadiusMm, 0) + " mm > " + Fixed(options.maxColonRadiusMm, 0) +
                    " mm (lung-like)";
@@ -236,16 +348,18 @@ LumenSegmentation SegmentColonLumen(const Volume<short>& ct, const SegmentationO
                    " (a compact pocket, not a tube)";
       } else if (found) {
         c.decision = Decision::NotLargest;
-        c.reason = "colon-like but smaller than the colon (the lumen is one component)";
+        c.reason = "colon-like but smaller than the colon, and its ends do not continue the colon";
       } else {
         c.decision = Decision::Colon;
         c.reason = "largest thin, elongated air component inside the body";
         found = true;
         result.colon = result.components.size();
         result.cavityVoxelsFilled = filled;
-        colonCrop = std::move(crop);
-        colonDepth = std::move(depth);
+        candidates.insert(candidates.begin(), Candidate{result.colon, std::move(crop), std::move(depth), filled});
       }
+      // The largest candidates only: more pieces than kMaxPieces are not a collapsed colon.
+      if (c.decision != Decision::Colon && candidate && candidates.size() + (found ? 0 : 1) < std::size_t(kMaxPieces))
+        candidates.push_back(Candidate{result.components.size(), std::move(crop), std::move(depth), filled});
     }
     result.components.push_back(std::move(c));
   }
@@ -279,29 +393,87 @@ LumenSegmentation SegmentColonLumen(const Volume<short>& ct, const SegmentationO
   std::vector<std::uint32_t>().swap(labels);
   lap("shape analysis, cavity filling, depth");
 
-  // 4. Topology: grow a ball from the deepest voxel, deepest first.
-  Volume<float> priority;
-  priority.size = colonCrop.mask.size;
-  priority.voxels = std::move(colonDepth);
-  const std::size_t seed = static_cast<std::size_t>(
-      std::max_element(priority.voxels.begin(), priority.voxels.end()) - priority.voxels.begin());
-  Volume<unsigned char> ball;
-  {
-    SubProgress step(progress, 0.62, 0.97);
-    ball = GrowTopologicalBall(colonCrop.mask, priority, seed, step, &result.growth);
+  // 4 (first part). Topology: each candidate's ball, so that the piece ends below are not taken
+  // through a handle (two loops touching) but along the colon.
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    SubProgress step(progress, 0.62 + 0.3 * double(k) / double(candidates.size()),
+                     0.62 + 0.3 * double(k + 1) / double(candidates.size()));
+    GrowBall(candidates[k], step);
   }
-  result.handleVoxelsRemoved = result.growth.refusedVoxels;
   lap("topology-preserving growth");
 
-  result.label = ct.Like<unsigned char>(0);
-  const auto& first = colonCrop.first;
-  for (std::size_t k = 1; k + 1 < ball.size[2]; ++k)
-    for (std::size_t j = 1; j + 1 < ball.size[1]; ++j) {
-      const unsigned char* row = &ball.At(1, j, k);
-      unsigned char* out = &result.label.At(first[0], first[1] + j - 1, first[2] + k - 1);
-      std::copy(row, row + ball.size[0] - 2, out);
+  // 3a. Pieces: which candidates continue the colon, in their order from the caecum. Without
+  // further candidates the colon is the one piece (nothing to order: its ends are not measured).
+  std::vector<PieceShape> shapes(candidates.size());
+  PieceChain chain;
+  if (candidates.size() > 1) {
+    for (std::size_t k = 0; k < candidates.size(); ++k) shapes[k] = MeasurePieceShape(candidates[k].ball);
+    chain = OrderPieces(shapes, 0, options.pieceOrder);
+  } else {
+    chain.pieces = {0};
+    chain.caecalEnd = {0};
+  }
+  {
+    int nextLabel = 2;
+    for (std::size_t k = 0; k < chain.pieces.size(); ++k) {
+      const std::size_t cand = static_cast<std::size_t>(chain.pieces[k]);
+      AirComponent& c = result.components[candidates[cand].component];
+      ColonPiece piece;
+      piece.component = candidates[cand].component;
+      piece.labelValue = cand == 0 ? 1 : nextLabel++;
+      piece.shape = shapes[cand];
+      piece.caecalEnd = chain.caecalEnd[k];
+      piece.gapAfterMm = k < chain.gapMm.size() ? chain.gapMm[k] : 0.0;
+      c.lengthMm = candidates.size() > 1 ? shapes[cand].lengthMm : -1.0;
+      c.labelValue = piece.labelValue;
+      if (cand != 0) {
+        c.decision = Decision::Piece;
+        c.reason = "a further piece of the colon (piece " + std::to_string(k + 1) + " of " +
+                   std::to_string(chain.pieces.size()) + " from the caecum; a collapsed stretch between)";
+      }
+      result.pieces.push_back(piece);
     }
-  result.lumenVolumeMl = double(result.growth.grownVoxels) * voxelMl;
+  }
+  lap("pieces");
+
+  // 4 (second part). The label map: each piece's ball, or the bridged colon grown as one ball.
+  result.label = ct.Like<unsigned char>(0);
+  std::vector<Candidate*> grown;
+  for (std::size_t k = 0; k < result.pieces.size(); ++k) grown.push_back(&candidates[static_cast<std::size_t>(chain.pieces[k])]);
+  Candidate bridged;
+  if (options.bridgePieces && result.pieces.size() > 1) {
+    SubProgress step(progress, 0.92, 0.99);
+    SubProgress prepare(step, 0.0, 0.4), grow(step, 0.4, 1.0);
+    bridged = BridgePieces(ct, grown, result, prepare);
+    GrowBall(bridged, grow);
+    grown = {&bridged};
+  }
+  for (std::size_t k = 0; k < grown.size(); ++k) {
+    const Candidate& c = *grown[k];
+    const bool colon = grown.size() == 1 || static_cast<std::size_t>(chain.pieces[k]) == 0;
+    const unsigned char value = grown.size() == 1 ? 1 : static_cast<unsigned char>(result.pieces[k].labelValue);
+    const auto& first = c.crop.first;
+    for (std::size_t z = 1; z + 1 < c.ball.size[2]; ++z)
+      for (std::size_t y = 1; y + 1 < c.ball.size[1]; ++y) {
+        const unsigned char* row = &c.ball.At(1, y, z);
+        unsigned char* out = &result.label.At(first[0], first[1] + y - 1, first[2] + z - 1);
+        for (std::size_t x = 0; x + 2 < c.ball.size[0]; ++x)
+          if (row[x]) out[x] = value;
+      }
+    result.piecesVolumeMl += double(c.growth.grownVoxels) * voxelMl;
+    if (colon) {
+      result.growth = c.growth;
+      result.handleVoxelsRemoved = c.growth.refusedVoxels;
+      result.lumenVolumeMl = double(c.growth.grownVoxels) * voxelMl;
+    }
+  }
+  if (!result.bridgeLabel.voxels.empty()) {
+    // Virtual voxels the growth left out are not lumen at all; the real ones are not virtual.
+    for (std::size_t v = 0; v < result.label.voxels.size(); ++v)
+      result.bridgeLabel.voxels[v] = result.bridgeLabel.voxels[v] && result.label.voxels[v];
+    std::size_t virtualVoxels = std::count(result.bridgeLabel.voxels.begin(), result.bridgeLabel.voxels.end(), 1);
+    result.piecesVolumeMl = result.lumenVolumeMl - double(virtualVoxels) * voxelMl;
+  }
   lap("label map");
   progress.Report(1.0);
   return result;

@@ -9,7 +9,9 @@ NaN barycentric coordinates or a triangle naming a point past the end (ColonTran
 findings by up to 24 mm), .fcsv findings with NaN, infinite or unit-suffixed coordinates ("12.3mm"
 was read as 12.3), a findings file without points (was an empty output and exit 0), and NIfTI CTs
 with zero or NaN spacing or cut short (read as 1 mm, or as a partial image), and a DICOM series with
-a slice missing (its z spacing was averaged without a word).
+a slice missing (its z spacing was averaged without a word). Output folders (issue 23): ".",
+"/" and someone else's non-empty folder, refused by each of the 7 modules that write a folder,
+with the working folder and the other folder left as they were.
 
 Usage: bad_input_test.py <cli-modules folder> <TestData folder>
 """
@@ -69,12 +71,12 @@ def nifti(path, spacing=(1.0, 1.0, 1.0), size=(24, 20, 16), cut=0, gz=False):
     open(path, "wb").write(blob[:len(blob) - cut] if cut else blob)
 
 
-def expect_refused(name, module, args, user_file, words, outputs):
-    """Runs module with args; checks the failure contract."""
+def expect_refused(name, module, args, user_file, words, outputs, cwd=None):
+    """Runs module with args (in folder cwd); checks the failure contract."""
     start = time.time()
     try:
         r = subprocess.run([os.path.join(cli, module)] + args, capture_output=True, text=True,
-                           stdin=subprocess.DEVNULL, timeout=TIMEOUT)
+                           stdin=subprocess.DEVNULL, timeout=TIMEOUT, cwd=cwd)
     except subprocess.TimeoutExpired:
         check(False, f"{name}: still running after {TIMEOUT} s (a hang)")
         return
@@ -209,6 +211,31 @@ try:
         nifti(path, **kwargs)
         out = os.path.join(work, label.replace(" ", "_") + "_cleansed.nrrd")
         expect_refused(f"NIfTI with a {label}", "ColonCleansing", [path, out], path, words, [out])
+
+    # Output folders: "." (what Slicer passes for a folder left unset), "/", someone else's folder.
+    here = os.path.join(work, "working-folder")
+    os.makedirs(here)
+    foreign = os.path.join(work, "someone-else")
+    os.makedirs(foreign)
+    open(os.path.join(foreign, "thesis.tex"), "w").write("x")
+    ct = os.path.join(data, "phantom-2.5mm")
+    folder_calls = {
+        "ColonPhantom": lambda o: ["--outputDirectory", o],
+        "ColonLandmarks": lambda o: [os.path.join(data, "landmarks-2mm", "supine_surface.vtp"), o],
+        "ColonFlattening": lambda o: [os.path.join(reg, "landmarks", "supine"), o],
+        "ColonRegistration": lambda o: [os.path.join(reg, "supine"), os.path.join(reg, "prone"), o],
+        "ColonFlatViews": lambda o: [os.path.join(reg, "supine"), os.path.join(reg, "prone"), os.path.join(reg, "registration"), o],
+        "ColonEndoluminalViews": lambda o: ["--supineVolume", os.path.join(ct, "supine.nrrd"), "--proneVolume",
+                                            os.path.join(ct, "prone.nrrd"), "--registration",
+                                            os.path.join(reg, "registration", "registration.vtp"), "--findings", findings, o],
+        "ColonSupineProne": lambda o: ["--supine", os.path.join(ct, "supine.nrrd"), "--prone", os.path.join(ct, "prone.nrrd"),
+                                       "--outputDirectory", o],
+    }
+    for module, call in folder_calls.items():
+        for folder, words in ((".", ["current folder"]), ("/", ["root of the file system"]),
+                              (foreign, ["not empty", "no ColonMap output", "thesis.tex"])):
+            expect_refused(f"{module} into {folder}", module, call(folder), f"output folder '{folder}'", words, [], cwd=here)
+        check(os.listdir(here) == [] and os.listdir(foreign) == ["thesis.tex"], f"{module}: wrote into a refused folder")
 
     # A DICOM series with a slice missing (ITK averaged the z spacing and only warned).
     shared = os.path.join(os.path.dirname(os.path.abspath(__file__)), *[".."] * 3, "shared", "data",

@@ -103,8 +103,14 @@ void Run(cli::ModuleContext& ctx) {
   ctx.progress.EndStage();
 
   ctx.progress.StartStage("Evaluate", "transferring the supine points");
-  std::map<std::string, Group> groups;  // "all", segment names, "polyps"
+  std::map<std::string, Group> groups;  // "all", segment names, "polyps", "open" (with collapses)
   long unmatched = 0;
+  // Collapsed stretches (phantom truth says collapsed=true|false per scan): the truth points on
+  // wall open in the supine scan but collapsed in the prone one (a finding there has no prone
+  // position) and how many of them the transfer flags visible=false; those collapsed in the
+  // supine scan (no reader can mark them) likewise; and open points it flags wrongly.
+  long proneOnly = 0, proneOnlyFlagged = 0, supineClosed = 0, supineClosedFlagged = 0, openHidden = 0;
+  bool collapseTruth = false;
   json perPoint = json::array();
   auto evaluate = [&](const MarkupList& s, const MarkupList& p, bool polyps) {
     std::map<std::string, const ControlPoint*> byLabel;
@@ -139,9 +145,25 @@ void Run(cli::ModuleContext& ctx) {
         if (std::isfinite(v)) row[a] = v;
       }
       if (t.segment >= 0 && t.segment < 5) row["mapSegment"] = kNames[t.segment];
+      row["visible"] = t.visible;
+      const bool tagged = c.description.find("collapsed=") != std::string::npos;
+      const bool supineShut = c.description.find("collapsed=true") != std::string::npos;
+      const bool proneShut = it->second->description.find("collapsed=true") != std::string::npos;
+      const bool closed = supineShut || proneShut;
+      if (tagged) {
+        collapseTruth = true;
+        row["collapsedInTruth"] = supineShut ? (proneShut ? "both" : "supine") : (proneShut ? "prone" : "none");
+        proneOnly += proneShut && !supineShut;
+        proneOnlyFlagged += proneShut && !supineShut && !t.visible;
+        supineClosed += supineShut;
+        supineClosedFlagged += supineShut && !t.visible;
+        openHidden += !closed && !t.visible;
+      }
       if (const double v = forward.SourceValue("Trusted", t); std::isfinite(v)) row["trusted"] = v >= 0.5;  // the registration's segment at the foot
       perPoint.push_back(row);
-      for (const std::string& g : polyps ? std::vector<std::string>{"polyps"} : std::vector<std::string>{"all", seg}) {
+      std::vector<std::string> into = polyps ? std::vector<std::string>{"polyps"} : std::vector<std::string>{"all", seg};
+      if (tagged && !closed && !polyps) into.push_back("open");  // wall open in both scans
+      for (const std::string& g : into) {
         if (g.empty()) continue;
         Group& G = groups[g];
         G.e3.push_back(e3);
@@ -196,6 +218,16 @@ void Run(cli::ModuleContext& ctx) {
   report["overall"] = row("all", groups["all"]);
   report["segments"] = segs;
   if (groups.count("polyps")) report["polyps"] = row("polyps", groups["polyps"]);
+  if (collapseTruth) {
+    if (groups.count("open")) report["open"] = row("open", groups["open"]);
+    report["collapsed"] = {{"proneOnly", proneOnly}, {"proneOnlyNotVisible", proneOnlyFlagged},
+                           {"supine", supineClosed}, {"supineNotVisible", supineClosedFlagged},
+                           {"openButNotVisible", openHidden},
+                           {"note", "truth points on wall open in the supine scan and collapsed in the prone scan (proneOnly) "
+                                    "and those the transfer marks visible=false; points collapsed in the supine scan (no reader "
+                                    "can mark them) likewise; open points marked visible=false; 'open' holds the errors of the "
+                                    "points open in both scans"}};
+  }
   report["unmatchedLabels"] = unmatched;
   report["points"] = perPoint;  // per point: error, flat positions (mapped and true, prone FlatUV)
   report["flatWidth"] = 1.0;

@@ -27,6 +27,8 @@ PhantomOptions OptionsFrom(const cli::Arguments& args) {
   o.seed = static_cast<std::uint32_t>(args.GetInt("seed"));
   o.deformation = args.GetDouble("deformation");
   o.fluid = !args.GetBool("noFluid");
+  o.collapses = args.GetInt("collapse");
+  if (o.collapses < 0 || o.collapses > 4) throw Error("parameter --collapse: expected 0..4 collapsed stretches");
   const std::vector<double> spacing = args.GetDoubleVector("spacing");
   if (spacing.size() != 3 || !(spacing[0] > 0 && spacing[1] > 0 && spacing[2] > 0))
     throw Error("parameter --spacing: expected three positive numbers x,y,z in mm");
@@ -36,6 +38,23 @@ PhantomOptions OptionsFrom(const cli::Arguments& args) {
   return o;
 }
 
+
+// truth.json's collapsed stretches (issue 21), when there are any.
+void AddCollapses(json& j, const std::vector<CollapsedStretch>& collapses, const std::function<double(double)>& supineArc,
+                  const std::function<double(double)>& proneArc) {
+  if (collapses.empty()) return;
+  json list = json::array();
+  for (const CollapsedStretch& c : collapses) {
+    json scans = json::array();
+    if (c.supine) scans.push_back("supine");
+    if (c.prone) scans.push_back("prone");
+    list.push_back({{"materialS", {c.s0, c.s1}}, {"segment", SegmentName(c.segment)}, {"scans", scans},
+                    {"supineArcLength", {supineArc(c.s0), supineArc(c.s1)}},
+                    {"proneArcLength", {proneArc(c.s0), proneArc(c.s1)}}});
+  }
+  j["collapses"] = list;
+  j["collapsesNote"] = "the lumen is closed (no air, wall touching) over these stretches in the scans named";
+}
 
 json SummaryJson(const DilatationSummary& d) {
   return {{"mean", d.mean}, {"median", d.median}, {"p90", d.p90}, {"max", d.max}, {"faces", d.count}};
@@ -73,6 +92,7 @@ json Describe(const PhantomOptions& o, const ColonAnatomy& a, const ScanGeometry
                       {"diameterMm", p.diameter}, {"heightMm", p.height}, {"materialS", p.s},
                       {"materialTheta", p.theta}, {"segment", SegmentName(a.SegmentOf(p.s))}});
   j["polyps"] = polyps;
+  AddCollapses(j, a.collapses, [&](double s) { return supine.ArcLength(s); }, [&](double s) { return prone.ArcLength(s); });
   j["folds"] = a.folds.size();
   j["taeniae"] = {"TL", "TO", "TM"};
   j["evaluationPoints"] = a.evaluationSites.size();
@@ -146,6 +166,7 @@ json DescribeReal(const PhantomOptions& o, const realcolon::RealColonOptions& ro
                       {"diameterMm", q.diameter}, {"heightMm", q.height}, {"materialS", q.s},
                       {"materialTheta", q.theta}, {"segment", SegmentName(q.segment)}});
   j["polyps"] = polyps;
+  AddCollapses(j, p.collapses, [&](double s) { return p.supine.ArcOfS(m, s); }, [&](double s) { return p.prone.ArcOfS(m, s); });
   j["taeniae"] = nullptr;
   j["taeniaeNote"] = "not known on real colons; no taeniae files are written";
   j["evaluationPoints"] = p.sites.size();

@@ -7,6 +7,7 @@
 #include "IO/ImageIO.h"
 #include "IO/MarkupsIO.h"
 #include "IO/MeshIO.h"
+#include "Registration/EmbeddedProneMesh.h"
 #include "Registration/FlatLocator.h"
 #include "Registration/RegistrationReliability.h"
 #include "Registration/SegmentRegistration.h"
@@ -352,6 +353,11 @@ void Run(cli::ModuleContext& ctx) {
     j["trustedFraction"] = trusted.size() ? trusted.mean() : 0.0;
     j["reliableFraction"] = reliable.size() ? reliable.mean() : 0.0;
     j["expectedErrorMm"] = j["uncertainty"]["medianOfVertices"];
+    // Collapsed stretches bridged by virtual lumen (ColonSurface's Virtual array, where a scan has
+    // one): the share of each scan's wall of this segment that its CT did not show.
+    for (const auto& [part, key] : {std::pair{&supineParts[k], "supineVirtualFraction"}, std::pair{&proneParts[k], "proneVirtualFraction"}})
+      if (const auto it = part->pointData.find("Virtual"); it != part->pointData.end() && it->second.values.rows() > 0)
+        j[key] = (it->second.values.col(0).array() >= 0.5).cast<double>().mean();
     if (!trust[k].trusted) {
       untrusted += (untrusted.empty() ? "" : ",") + X;
       std::string why;
@@ -374,8 +380,12 @@ void Run(cli::ModuleContext& ctx) {
   for (const auto& m : proneParts) pptr.push_back(&m);
   const TriangleMesh supine = Combine(sptr), prone = Combine(pptr);
   ctx.progress.Report(0.3);
+  // registration.vtp carries the prone mesh too: one file is all ColonTransferPoints and
+  // ColonEvaluateRegistration need (Slicer passes a model node as a lone renamed copy).
+  io::FieldArrays proneCopy;
+  EmbedProneMesh(prone, &proneCopy);
   io::WriteMesh(supine, ctx.outputs.Stage((fs::path(out) / "registration.vtp").string(), "output registration.vtp"),
-                "registration");
+                "registration", proneCopy);
   io::WriteMesh(prone, ctx.outputs.Stage((fs::path(out) / "registration_prone.vtp").string(), "output registration_prone.vtp"),
                 "prone registration mesh");
   const Eigen::VectorXd K = supine.cellData.at("Dilatation").values.col(0);

@@ -24,8 +24,13 @@ void Run(cli::ModuleContext& ctx) {
   options.minColonVolumeMl = ctx.args.GetDouble("minColonVolume");
   options.maxColonRadiusMm = ctx.args.GetDouble("maxColonRadius");
   options.minElongation = ctx.args.GetDouble("minElongation");
+  options.bridgePieces = ctx.args.GetBool("bridgePieces");
+  const std::string bridgeOutput = ctx.args.GetString("bridgeLabel");
+  if (!bridgeOutput.empty() && !options.bridgePieces)
+    throw Error("parameter --bridgeLabel: the virtual lumen label map needs --bridgePieces");
   // Staged first, so that an unwritable output fails before the work.
   const std::string staged = ctx.outputs.Stage(output, "output label map");
+  const std::string stagedBridge = bridgeOutput.empty() ? "" : ctx.outputs.Stage(bridgeOutput, "virtual lumen label map");
   ctx.progress.Plan({{"Reading", 2}, {"Segmentation", 10}, {"Writing", 1}});
 
   ctx.progress.StartStage("Reading", "reading the CT");
@@ -43,6 +48,9 @@ void Run(cli::ModuleContext& ctx) {
 
   ctx.progress.StartStage("Writing", "writing the label map");
   io::WriteImage(s.label, staged, "output label map");
+  if (!stagedBridge.empty())
+    io::WriteImage(s.bridgeLabel.voxels.empty() ? s.label.Like<unsigned char>(0) : s.bridgeLabel, stagedBridge,
+                   "virtual lumen label map");
   ctx.progress.EndStage();
 
   // Report: the kept component, then every dropped one of 1 ml or more (the rest counted).
@@ -56,7 +64,7 @@ void Run(cli::ModuleContext& ctx) {
   };
   std::size_t tiny = 0;
   for (const AirComponent& c : s.components) {
-    if (c.decision == Decision::Colon || c.volumeMl >= 1.0)
+    if (c.decision == Decision::Colon || c.decision == Decision::Piece || c.volumeMl >= 1.0)
       ctx.progress.Note("ColonSegmentation: air component " + describe(c));
     else
       ++tiny;
@@ -71,8 +79,27 @@ void Run(cli::ModuleContext& ctx) {
     reasons += std::string(DecisionName(d)) + " " + std::to_string(s.Dropped(d));
     keys += std::string(key) + ":" + std::to_string(s.Dropped(d));
   }
-  ctx.progress.Note("ColonSegmentation: lumen " + cli::FormatFixed(s.lumenVolumeMl, 1) + " ml, 1 component kept, " +
-                    std::to_string(s.components.size() - 1) + " dropped (" + reasons + "); " +
+  const std::size_t kept = s.pieces.size();
+  std::string order, lengths, gaps, pieces;
+  for (std::size_t k = 0; k < kept; ++k) {
+    const ColonPiece& p = s.pieces[k];
+    const AirComponent& c = s.components[p.component];
+    order += (k ? "," : "") + std::to_string(p.labelValue);
+    if (kept > 1) lengths += (k ? "," : "") + cli::FormatFixed(c.lengthMm, 0);
+    if (k + 1 < kept) gaps += (k ? "," : "") + cli::FormatFixed(p.gapAfterMm, 0);
+    pieces += (k ? "; gap " + cli::FormatFixed(s.pieces[k - 1].gapAfterMm, 0) + " mm; " : std::string()) + "label " +
+              std::to_string(p.labelValue) + " " + cli::FormatFixed(c.volumeMl, 0) + " ml, " + cli::FormatFixed(c.lengthMm, 0) + " mm";
+  }
+  const double virtualMl = s.bridges.empty() ? 0.0 : s.lumenVolumeMl - s.piecesVolumeMl;
+  if (kept > 1)
+    ctx.progress.Note("ColonSegmentation: the colon is in " + std::to_string(kept) +
+                      " pieces (collapsed or fluid-filled stretches between), from the caecum: " + pieces +
+                      (s.bridges.empty() ? "; later stages read label 1, the largest piece"
+                                         : "; joined by " + cli::FormatFixed(virtualMl, 1) +
+                                               " ml of virtual lumen into label 1 (the whole colon)"));
+  ctx.progress.Note("ColonSegmentation: lumen " + cli::FormatFixed(s.lumenVolumeMl, 1) + " ml, " + std::to_string(kept) +
+                    (kept == 1 ? " component" : " components") + " kept, " +
+                    std::to_string(s.components.size() - kept) + " dropped (" + reasons + "); " +
                     std::to_string(s.cavityVoxelsFilled) + " cavity voxels filled, " +
                     std::to_string(s.handleVoxelsRemoved) + " voxels left out to cut handles (growth " +
                     cli::FormatFixed(s.growth.seconds, 2) + " s)");
@@ -80,8 +107,13 @@ void Run(cli::ModuleContext& ctx) {
   for (const auto& [step, seconds] : s.stepSeconds) steps += (steps.empty() ? "" : ", ") + step + " " + cli::FormatFixed(seconds, 2) + " s";
   ctx.progress.Note("ColonSegmentation: times: " + steps);
   ctx.SetReturn("lumenVolume", cli::FormatFixed(s.lumenVolumeMl, 1));
-  ctx.SetReturn("componentsKept", "1");
-  ctx.SetReturn("componentsDropped", std::to_string(s.components.size() - 1));
+  ctx.SetReturn("componentsKept", std::to_string(kept));
+  ctx.SetReturn("componentsDropped", std::to_string(s.components.size() - kept));
+  ctx.SetReturn("pieceOrder", order);
+  ctx.SetReturn("pieceLengths", lengths);
+  ctx.SetReturn("pieceGaps", gaps);
+  ctx.SetReturn("piecesVolume", cli::FormatFixed(s.piecesVolumeMl, 1));
+  ctx.SetReturn("virtualVolume", cli::FormatFixed(virtualMl, 1));
   ctx.SetReturn("droppedReasons", keys);
   ctx.SetReturn("cavityVoxelsFilled", std::to_string(s.cavityVoxelsFilled));
   ctx.SetReturn("handleVoxelsRemoved", std::to_string(s.handleVoxelsRemoved));

@@ -109,6 +109,13 @@ json FindingsTable(const MarkupList& supine, const MarkupList& prone, const Mark
     if (!u.empty()) row["uncertaintyMm"] = std::stod(u);
     const std::string r = DescriptionField(p.description, "reliable");
     if (!r.empty()) row["reliable"] = r == "true";
+    // Collapsed stretches (issue 21): a finding on wall not seen in one scan says so.
+    if (DescriptionField(p.description, "visible") == "false") {
+      row["visible"] = false;
+      row["notSeenIn"] = DescriptionField(p.description, "notSeenIn") == "source" ? "supine" : "prone";
+      const std::string d = DescriptionField(p.description, "alongColonToOpenMm");
+      if (!d.empty()) row["alongColonToOpenMm"] = std::stod(d);
+    }
     if (truth)
       for (const auto& t : truth->points)
         if (t.label == s.label) row["trueErrorMm"] = (t.position - p.position).norm();
@@ -137,8 +144,8 @@ std::vector<std::pair<std::string, double>> Plan(const Options& o) {
   return plan;
 }
 
-void CheckInputs(const Options& o) {
-  for (int k = 0; k < 2; ++k) {
+void CheckInputs(const Options& o, bool scansMustExist = true) {
+  for (int k = 0; k < 2 && scansMustExist; ++k) {
     if (o.scan[k].empty()) throw Error(std::string(kScans[k]) + " scan: no file given (--" + kScans[k] + ")");
     if (!fs::exists(o.scan[k])) throw InputError(std::string(kScans[k]) + " scan", o.scan[k], "does not exist");
   }
@@ -158,6 +165,105 @@ void CheckInputs(const Options& o) {
   }
 }
 
+// summary.json and report.html from the stage records and the (possibly temporary) stage folders;
+// the return parameters and the closing note. Shared by the whole run and --reportOnly.
+void WriteSummaryAndReport(cli::ModuleContext& ctx, const Options& o, const json& stages, double totalSeconds,
+                           const std::map<std::string, std::string>& folders, const json& notes,
+                           const json& findingsTable) {
+  const auto in_ = [&](const std::string& stage, const std::string& file) {
+    const auto it = folders.find(stage);
+    return it == folders.end() ? std::string() : (fs::path(it->second) / file).string();
+  };
+  report::PipelineReportInput in;
+  for (int k = 0; k < 2; ++k) {
+    in.stages.landmarks[k] = report::ReadJsonOrNull(in_("landmarks", std::string(kScans[k]) + "/landmarks.json"));
+    in.stages.flattening[k] = report::ReadJsonOrNull(in_("flattening", std::string(kScans[k]) + "/flattening.json"));
+  }
+  in.stages.registration = report::ReadJsonOrNull(in_("registration", "registration.json"));
+  in.flags = report::AssessQuality(in.stages);
+  json flags = json::array();
+  int warnings = 0;
+  for (const auto& f : in.flags) {
+    flags.push_back({{"name", f.name}, {"ok", f.ok}, {"detail", f.detail}});
+    warnings += f.ok ? 0 : 1;
+  }
+  in.summary = {{"inputs", {{"supine", o.scan[0]}, {"prone", o.scan[1]}, {"labelMaps", o.labelMaps},
+                            {"findings", o.findings}, {"groundTruth", o.truth}}},
+                {"method", o.method},
+                {"stages", stages},
+                {"totalSeconds", totalSeconds},
+                {"quality", flags},
+                {"warnings", warnings},
+                {"notes", notes},
+                {"findings", findingsTable}};
+  in.folders = folders;
+  io::WriteText(in.summary.dump(2) + "\n", ctx.outputs.Stage((fs::path(o.out) / "summary.json").string(), "summary.json"),
+                "summary.json");
+  io::WriteText(report::PipelineReportHtml(in), ctx.outputs.Stage((fs::path(o.out) / "report.html").string(), "report.html"),
+                "report.html");
+  ctx.progress.EndStage();
+
+  ctx.SetReturn("totalSeconds", cli::FormatFixed(totalSeconds, 2));
+  ctx.SetReturn("warnings", std::to_string(warnings));
+  ctx.progress.Note("ColonSupineProne: " + cli::FormatFixed(totalSeconds, 1) + " s, " + std::to_string(warnings) +
+                    " quality warning(s); report: " + (fs::path(o.out) / "report.html").string());
+}
+
+// --reportOnly: summary.json and report.html from the stage folders already under the output folder
+// (made by the stage modules run one at a time, e.g. by the cohort workflow, scripts/cohort/).
+// The stage times and results come from --stageRecords; nothing else is run or changed.
+void RunReportOnly(cli::ModuleContext& ctx, const Options& o, const std::string& recordsPath) {
+  const fs::path out(o.out);
+  if (!fs::is_directory(out)) throw InputError("output folder", o.out, "does not exist (--reportOnly reads the stage folders in it)");
+  std::map<std::string, std::string> folders;
+  for (const char* stage : {"cleansing", "segmentation", "surface", "landmarks", "flattening", "registration",
+                            "flatviews", "transfer", "views", "evaluation"})
+    if (fs::is_directory(out / stage)) folders[stage] = (out / stage).string();
+  for (const char* file : {"landmarks/supine/landmarks.json", "landmarks/prone/landmarks.json",
+                           "flattening/supine/flattening.json", "flattening/prone/flattening.json",
+                           "registration/registration.json"})
+    if (!fs::is_regular_file(out / file))
+      throw InputError("output folder", o.out, std::string("has no ") + file + " (run the stages before --reportOnly)");
+  json stages = json::array(), notes = json::array();
+  if (!recordsPath.empty()) {
+    const json records = report::ReadJsonOrNull(recordsPath);
+    if (!records.is_object() || !records.value("stages", json()).is_array())
+      throw InputError("stage records", recordsPath, "is not a JSON object with a \"stages\" array");
+    stages = records["stages"];
+    if (records.value("notes", json()).is_array()) notes = records["notes"];
+  }
+  double totalSeconds = 0.0;
+  for (const auto& s : stages)
+    if (s.is_object() && s.value("seconds", json()).is_number()) totalSeconds += s["seconds"].get<double>();
+  json findingsTable = json::array();
+  if (!o.findings.empty()) {
+    const fs::path mapped = out / "transfer" / "findings_prone.mrk.json";
+    if (!fs::is_regular_file(mapped))
+      throw InputError("output folder", o.out, "has no transfer/findings_prone.mrk.json for the findings (run ColonTransferPoints)");
+    const fs::path t = fs::path(o.truth) / "prone_polyps.mrk.json";
+    const MarkupList truth = o.truth.empty() || !fs::exists(t) ? MarkupList{} : io::ReadMarkups(t.string(), "true prone polyps");
+    findingsTable = FindingsTable(io::ReadMarkups(o.findings, "findings"), io::ReadMarkups(mapped.string(), "mapped findings"),
+                                  truth.points.empty() ? nullptr : &truth);
+    bool said = false;
+    for (const auto& n : notes) said = said || (n.is_string() && n.get<std::string>().rfind("No endoluminal views", 0) == 0);
+    if (o.labelMaps && !said)
+      notes.push_back("No endoluminal views: the inputs are label maps, there is no CT to render.");
+    else if (o.views && !folders.count("views") && !said)
+      notes.push_back("No endoluminal views: " + (out / "views").string() + " does not exist.");
+  }
+  if (!o.truth.empty()) {
+    const json errors = report::ReadJsonOrNull((out / "evaluation" / "errors.json").string());
+    const json mean = errors.is_object() ? errors.value("overall", json::object()).value("error3D", json::object()).value("mean", json())
+                                         : json();
+    if (!mean.is_number())
+      throw InputError("output folder", o.out, "has no evaluation/errors.json for the ground truth (run ColonEvaluateRegistration)");
+    ctx.SetReturn("meanError", cli::FormatNumber(mean.get<double>()));
+  }
+  ctx.progress.Plan({{"report", 0.2}});
+  ctx.progress.StartStage("report");
+  WriteSummaryAndReport(ctx, o, stages, totalSeconds, folders, notes, findingsTable);
+}
+
 void Run(cli::ModuleContext& ctx) {
   Options o;
   o.scan[0] = ctx.args.GetString("supine");
@@ -171,6 +277,10 @@ void Run(cli::ModuleContext& ctx) {
   o.targetFaces = std::to_string(ctx.args.GetInt("targetFaces"));
   o.labelValue = std::to_string(ctx.args.GetInt("labelValue"));
   if (o.out.empty()) throw Error("output folder: no folder given (--outputDirectory)");
+  if (ctx.args.GetBool("reportOnly")) {
+    CheckInputs(o, /*scansMustExist=*/false);  // the scans are only named in summary.json, not read
+    return RunReportOnly(ctx, o, ctx.args.GetString("stageRecords"));
+  }
   CheckInputs(o);
   ctx.outputs.PrepareDirectory(o.out, "output folder");
   ctx.progress.Plan(Plan(o));
@@ -184,11 +294,15 @@ void Run(cli::ModuleContext& ctx) {
     if (!o.labelMaps) {
       const std::string cleansed = p.In("cleansing", scan + "_cleansed.nrrd");
       const std::string lumen = p.In("segmentation", scan + "_lumen.nrrd");
+      // A colon in pieces (collapsed stretches) is bridged by virtual lumen, and its wall marked
+      // (issue 21); a colon in one piece gives the same files as without.
+      const std::string virtualLumen = p.In("segmentation", scan + "_virtual.nrrd");
       p.Run("cleansing " + scan, COLONMAP_STAGE(ColonCleansing),
             {o.scan[k], cleansed, "--taggedLabel", p.In("cleansing", scan + "_tagged.nrrd")});
-      p.Run("segmentation " + scan, COLONMAP_STAGE(ColonSegmentation), {cleansed, lumen});
+      p.Run("segmentation " + scan, COLONMAP_STAGE(ColonSegmentation),
+            {cleansed, lumen, "--bridgePieces", "--bridgeLabel", virtualLumen});
       p.Run("surface " + scan, COLONMAP_STAGE(ColonSurface),
-            {lumen, surface, "--referenceCT", cleansed, "--targetFaces", o.targetFaces});
+            {lumen, surface, "--referenceCT", cleansed, "--targetFaces", o.targetFaces, "--virtualLabel", virtualLumen});
       volume[k] = cleansed;
     } else {
       p.Run("surface " + scan, COLONMAP_STAGE(ColonSurface),
@@ -251,39 +365,9 @@ void Run(cli::ModuleContext& ctx) {
   }
 
   ctx.progress.StartStage("report");
-  report::PipelineReportInput in;
-  for (int k = 0; k < 2; ++k) {
-    in.stages.landmarks[k] = report::ReadJsonOrNull(p.In("landmarks", std::string(kScans[k]) + "/landmarks.json"));
-    in.stages.flattening[k] = report::ReadJsonOrNull(p.In("flattening", std::string(kScans[k]) + "/flattening.json"));
-  }
-  in.stages.registration = report::ReadJsonOrNull(p.In("registration", "registration.json"));
-  in.flags = report::AssessQuality(in.stages);
-  json flags = json::array();
-  int warnings = 0;
-  for (const auto& f : in.flags) {
-    flags.push_back({{"name", f.name}, {"ok", f.ok}, {"detail", f.detail}});
-    warnings += f.ok ? 0 : 1;
-  }
-  in.summary = {{"inputs", {{"supine", o.scan[0]}, {"prone", o.scan[1]}, {"labelMaps", o.labelMaps},
-                            {"findings", o.findings}, {"groundTruth", o.truth}}},
-                {"method", o.method},
-                {"stages", p.Stages()},
-                {"totalSeconds", p.TotalSeconds()},
-                {"quality", flags},
-                {"warnings", warnings},
-                {"notes", notes},
-                {"findings", findingsTable}};
-  for (const auto& [stage, folder] : p.Folders()) in.folders[stage] = folder;
-  io::WriteText(in.summary.dump(2) + "\n", ctx.outputs.Stage((fs::path(o.out) / "summary.json").string(), "summary.json"),
-                "summary.json");
-  io::WriteText(report::PipelineReportHtml(in), ctx.outputs.Stage((fs::path(o.out) / "report.html").string(), "report.html"),
-                "report.html");
-  ctx.progress.EndStage();
-
-  ctx.SetReturn("totalSeconds", cli::FormatFixed(p.TotalSeconds(), 2));
-  ctx.SetReturn("warnings", std::to_string(warnings));
-  ctx.progress.Note("ColonSupineProne: " + cli::FormatFixed(p.TotalSeconds(), 1) + " s, " + std::to_string(warnings) +
-                    " quality warning(s); report: " + (fs::path(o.out) / "report.html").string());
+  std::map<std::string, std::string> folders;
+  for (const auto& [stage, folder] : p.Folders()) folders[stage] = folder;
+  WriteSummaryAndReport(ctx, o, p.Stages(), p.TotalSeconds(), folders, notes, findingsTable);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include "IO/ImageIO.h"
 #include "IO/MeshIO.h"
 #include "Surface/SurfaceReconstruction.h"
+#include "Surface/VirtualWall.h"
 
 #include <optional>
 
@@ -21,6 +22,7 @@ void Run(cli::ModuleContext& ctx) {
   const std::string labelPath = ctx.args.GetString("inputLabel");
   const std::string ctPath = ctx.args.GetString("referenceCT");
   const std::string outPath = ctx.args.GetString("outputSurface");
+  const std::string virtualPath = ctx.args.GetString("virtualLabel");
   if (labelPath.empty()) throw Error("input label map: no file given");
   if (outPath.empty()) throw Error("output surface: no file given");
   ctx.progress.Plan({{"Reading", 2}, {"Surface", 10}, {"Writing", 1}});
@@ -31,6 +33,13 @@ void Run(cli::ModuleContext& ctx) {
   ctx.progress.Report(0.5);
   std::optional<Volume<short>> ct;
   if (!ctPath.empty()) ct = io::ReadImage<short>(ctPath, "reference CT");
+  std::optional<Volume<unsigned char>> virtualLumen;
+  if (!virtualPath.empty()) {
+    virtualLumen = io::ReadImage<unsigned char>(virtualPath, "virtual lumen label map");
+    if (virtualLumen->size != label.size || (virtualLumen->origin - label.origin).norm() > 1e-3 ||
+        (virtualLumen->spacing - label.spacing).norm() > 1e-6)
+      throw InputError("virtual lumen label map", virtualPath, "not on the grid of the input label map");
+  }
   ctx.progress.EndStage();
 
   ctx.progress.StartStage("Surface", ct ? "iso-surface of the CT near the label boundary" : "surface of the label");
@@ -46,6 +55,15 @@ void Run(cli::ModuleContext& ctx) {
     throw InputError("input label map", labelPath, what.substr(what.find(':') + 2));
   }
   ctx.progress.EndStage();
+
+  std::size_t virtualVertices = 0;
+  if (virtualLumen) {
+    // Wall of the virtual lumen through collapsed stretches: carried to the registration.
+    const Eigen::VectorXd marks = surface::VirtualVertices(result.mesh.V, *virtualLumen);
+    virtualVertices = static_cast<std::size_t>(marks.sum());
+    // Only where there is virtual wall: a colon without collapse gives the same file as before.
+    if (virtualVertices > 0) result.mesh.pointData["Virtual"] = DataArray{marks, true};
+  }
 
   ctx.progress.StartStage("Writing", "surface file");
   io::WriteMesh(result.mesh, ctx.outputs.Stage(outPath, "output surface"), "output surface");
@@ -63,6 +81,10 @@ void Run(cli::ModuleContext& ctx) {
                     (result.usedCT ? "CT iso-value " + cli::FormatNumber(options.isoValueHU) + " HU" : "label only") +
                     ", contour " + std::to_string(result.contourFaces) + " faces; " + t.Summary());
   for (const std::string& n : result.notes) ctx.progress.Note("ColonSurface: " + n);
+  if (virtualLumen)
+    ctx.progress.Note("ColonSurface: " + std::to_string(virtualVertices) + " of " + std::to_string(result.mesh.V.rows()) +
+                      " vertices on virtual wall (point array Virtual)");
+  ctx.SetReturn("virtualVertices", std::to_string(virtualVertices));
   std::string times;
   for (const auto& [step, seconds] : result.stepSeconds)
     times += (times.empty() ? "" : ", ") + step + " " + cli::FormatFixed(seconds, 2) + " s";

@@ -42,7 +42,7 @@ void Run(cli::ModuleContext& ctx) {
   MarkupList result = points;
   result.name = points.name.empty() ? std::string(toProne ? "Prone" : "Supine") : points.name;
   double sum = 0;
-  long unreliable = 0;
+  long unreliable = 0, invisible = 0;
   for (std::size_t i = 0; i < points.points.size(); ++i) {
     const TransferredPoint t = transfer.Transfer(points.points[i].position);
     ControlPoint& c = result.points[i];
@@ -50,6 +50,11 @@ void Run(cli::ModuleContext& ctx) {
     // reliable=false: the registration cannot be trusted here, whatever the bound says.
     std::string d = "uncertaintyMm=" + Fixed(t.uncertaintyMm, 2) + " reliable=" + (t.reliable ? "true" : "false");
     unreliable += !t.reliable;
+    invisible += !t.visible;
+    // Collapsed stretches: no true position on virtual wall (PointTransfer.h).
+    if (!t.visible)
+      d += std::string(" visible=false") + (t.sourceVirtual ? " notSeenIn=source" : " notSeenIn=target") +
+           (t.targetVirtual ? " alongColonToOpenMm=" + Fixed(t.openDistanceMm, 1) : "");
     if (t.segment >= 0 && t.segment < 5) d += std::string(" segment=") + kNames[t.segment];
     d += " offsetMm=" + Fixed(t.offset, 2) + " dilatation=" + Fixed(t.dilatation, 3);
     if (!points.points[i].description.empty()) d += " source: " + points.points[i].description;
@@ -66,6 +71,11 @@ void Run(cli::ModuleContext& ctx) {
     ctx.progress.Note("ColonTransferPoints: WARNING: " + std::to_string(unreliable) +
                       " point(s) lie where the registration cannot be trusted (reliable=false in their description)");
   ctx.SetReturn("unreliablePoints", std::to_string(unreliable));
+  if (invisible > 0)
+    ctx.progress.Note("ColonTransferPoints: WARNING: " + std::to_string(invisible) +
+                      " point(s) lie on wall collapsed in one scan (visible=false; those on collapsed target wall are "
+                      "placed at the nearest open wall along the colon)");
+  ctx.SetReturn("invisiblePoints", std::to_string(invisible));
   ctx.SetReturn("meanUncertainty", cli::FormatNumber(points.points.empty() ? 0.0 : sum / points.points.size()));
 }
 

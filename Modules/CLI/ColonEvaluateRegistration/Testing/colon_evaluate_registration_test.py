@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """ColonEvaluateRegistration on the phantom's true walls: the conformal baseline and the centerline
 arc-length baseline evaluated on the phantom's evaluation points and polyps (the table is printed),
-errors.json / errors.tsv contents, round trip <= 1 mm, and errors (no common labels, missing file).
+errors.json / errors.tsv contents, round trip <= 1 mm, the same errors.json and errors.tsv (byte for
+byte) from a lone renamed registration as Slicer passes it, and errors (no common labels, missing
+file, a registration without the prone mesh inside and none beside it).
 
 Usage: colon_evaluate_registration_test.py <ColonEvaluateRegistration> <registration data folder>
 """
@@ -13,7 +15,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), *[".."] * 4, "Testing", "Python"))
-from colonmap_testing import Checks, return_parameters, run_program  # noqa: E402
+from colonmap_testing import Checks, return_parameters, run_program, slicer_model_copy, without_field_data  # noqa: E402
 
 exe, data = sys.argv[1], sys.argv[2]
 checks = Checks()
@@ -48,13 +50,39 @@ try:
         check(s["median"] <= s["p90"] <= s["max"], f"{method}: statistics order")
         u = j["overall"]["uncertainty"]
         print(f"uncertainty: mean {u['mean']:.2f} mm, coverage {u['coverage']:.2f}, correlation with error {u['correlationWithError']:.2f}")
+    # One file is enough (issue 23): a lone renamed copy as Slicer passes it, against a run given
+    # registration_prone.vtp explicitly.
+    reg = os.path.join(data, "registration", "registration.vtp")
+    truth = ["--truthSupine", os.path.join(data, "supine_eval.mrk.json"), "--truthProne", os.path.join(data, "prone_eval.mrk.json"),
+             "--polypsSupine", os.path.join(data, "supine_polyps.mrk.json"), "--polypsProne", os.path.join(data, "prone_polyps.mrk.json")]
+    slicer_tmp = os.path.join(work, "SlicerTemp")
+    os.makedirs(slicer_tmp)
+    lone = os.path.join(slicer_tmp, "CFHJE_vtkMRMLModelNodeE.vtp")
+    slicer_model_copy(reg, lone)
+    given = os.path.join(work, "given.json")
+    alone = os.path.join(work, "alone.json")
+    a = run("--registration", reg, "--proneMesh", os.path.join(data, "registration", "registration_prone.vtp"), *truth,
+            "--output", given)
+    b = run("--registration", lone, *truth, "--output", alone)
+    check(a.returncode == 0 and b.returncode == 0 and b.stderr == "", f"lone registration: {a.stderr} {b.stderr}")
+    for ext in (".json", ".tsv"):
+        g, l = given[:-5] + ext, alone[:-5] + ext
+        check(os.path.isfile(g) and os.path.isfile(l) and open(g, "rb").read() == open(l, "rb").read(),
+              f"errors{ext} from the lone renamed registration differs from the run given registration_prone.vtp")
+    old = os.path.join(work, "old")
+    os.makedirs(old)
+    without_field_data(reg, os.path.join(old, "registration.vtp"))
+    bad = os.path.join(work, "bad.json")
+    r = run("--registration", os.path.join(old, "registration.vtp"), *truth, "--output", bad)
+    check(r.returncode != 0 and "carries no prone mesh" in r.stderr and len(r.stderr.strip().splitlines()) == 1
+          and not os.path.exists(bad), f"no prone mesh: {r.stderr}")
+
     # Errors: no label in common; missing truth file.
     other = os.path.join(work, "other.mrk.json")
     j = json.load(open(os.path.join(data, "prone_eval.mrk.json")))
     for c in j["markups"][0]["controlPoints"]:
         c["label"] = "X" + c["label"]
     json.dump(j, open(other, "w"))
-    bad = os.path.join(work, "bad.json")
     r = run("--registration", os.path.join(data, "registration", "registration.vtp"),
             "--truthSupine", os.path.join(data, "supine_eval.mrk.json"), "--truthProne", other, "--output", bad)
     check(r.returncode != 0 and "no label in common" in r.stderr and not os.path.exists(bad), f"labels: {r.stderr}")

@@ -2,8 +2,10 @@
 """ColonTransferPoints on the phantom's true walls: a point lying exactly on a supine vertex lands
 on that vertex's stored image (PronePosition); labels are kept; output valid markups (schema);
 every point has an uncertainty; the true errors of the evaluation points are printed beside the
-uncertainty estimate; supine -> prone -> supine round trip mean <= 1 mm; errors (missing
-registration, missing registration_prone.vtp).
+uncertainty estimate; supine -> prone -> supine round trip mean <= 1 mm; one registration file is
+enough: a lone renamed copy as Slicer passes it gives byte-identical outputs in both directions to
+runs given registration_prone.vtp; errors (missing registration, a registration without the prone
+mesh inside and none beside it).
 
 Usage: colon_transfer_points_test.py <ColonTransferPoints> <registration data folder>
 """
@@ -19,7 +21,7 @@ import tempfile
 import vtk
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), *[".."] * 4, "Testing", "Python"))
-from colonmap_testing import Checks, return_parameters, run_program  # noqa: E402
+from colonmap_testing import Checks, return_parameters, run_program, slicer_model_copy, without_field_data  # noqa: E402
 
 exe, data = sys.argv[1], sys.argv[2]
 reg = os.path.join(data, "registration", "registration.vtp")
@@ -100,15 +102,42 @@ try:
     print(f"round trip supine -> prone -> supine: mean {sum(rt) / len(rt):.3f} mm, max {max(rt):.3f} mm")
     check(sum(rt) / len(rt) <= 1.0, f"round trip mean {sum(rt) / len(rt)}")
 
+    # One file is enough (issue 23): the registration as Slicer passes a model node, a renamed copy
+    # alone in its temp folder, against runs given the prone mesh file explicitly.
+    slicer_tmp = os.path.join(work, "SlicerTemp")
+    os.makedirs(slicer_tmp)
+    lone = os.path.join(slicer_tmp, "CFHJE_vtkMRMLModelNodeE.vtp")
+    slicer_model_copy(reg, lone)
+    prone_mesh = os.path.join(data, "registration", "registration_prone.vtp")
+    identical = 0
+    for direction, source in (("supineToProne", "supine_eval"), ("proneToSupine", "prone_eval"),
+                              ("supineToProne", "supine_polyps"), ("proneToSupine", "prone_polyps")):
+        given, alone = os.path.join(work, f"{source}-given.mrk.json"), os.path.join(work, f"{source}-alone.mrk.json")
+        src = os.path.join(data, source + ".mrk.json")
+        a = run("--registration", reg, "--proneMesh", prone_mesh, "--input", src, "--output", given, "--direction", direction)
+        b = run("--registration", lone, "--input", src, "--output", alone, "--direction", direction)
+        check(a.returncode == 0 and b.returncode == 0 and b.stderr == "", f"{source} alone: {a.stderr} {b.stderr}")
+        same = os.path.isfile(given) and os.path.isfile(alone) and open(given, "rb").read() == open(alone, "rb").read()
+        identical += check(same, f"{direction} {source}: the lone renamed registration gives other results than with registration_prone.vtp")
+    print(f"lone renamed registration (Slicer's temporary copy): {identical} of 4 outputs byte-identical (both directions)")
+
     # Errors.
     bad = os.path.join(work, "bad.mrk.json")
     res = run("--registration", os.path.join(work, "none.vtp"), "--input", vin, "--output", bad)
     check(res.returncode != 0 and "does not exist" in res.stderr and not os.path.exists(bad), f"missing registration: {res.stderr}")
-    lonely = os.path.join(work, "lonely")
-    os.makedirs(lonely)
-    shutil.copy(reg, lonely)
-    res = run("--registration", os.path.join(lonely, "registration.vtp"), "--input", vin, "--output", bad)
-    check(res.returncode != 0 and "registration_prone.vtp" in res.stderr and not os.path.exists(bad), f"no prone mesh: {res.stderr}")
+    old = os.path.join(work, "old")
+    os.makedirs(old)
+    without_field_data(reg, os.path.join(old, "registration.vtp"))
+    res = run("--registration", os.path.join(old, "registration.vtp"), "--input", vin, "--output", bad)
+    check(res.returncode != 0 and "carries no prone mesh" in res.stderr and "registration_prone.vtp" in res.stderr
+          and len(res.stderr.strip().splitlines()) == 1 and not os.path.exists(bad), f"no prone mesh: {res.stderr}")
+    # ... but an old registration still works with its registration_prone.vtp beside it.
+    shutil.copy(prone_mesh, old)
+    old_out = os.path.join(work, "old-out.mrk.json")
+    res = run("--registration", os.path.join(old, "registration.vtp"), "--input", os.path.join(data, "prone_eval.mrk.json"),
+              "--output", old_out, "--direction", "proneToSupine")
+    check(res.returncode == 0 and open(old_out, "rb").read() == open(os.path.join(work, "prone_eval-given.mrk.json"), "rb").read(),
+          f"old registration with its sibling: {res.stderr}")
 finally:
     shutil.rmtree(work, ignore_errors=True)
 
