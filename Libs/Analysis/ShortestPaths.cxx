@@ -8,16 +8,19 @@
 
 namespace colonmap::analysis {
 
-std::vector<double> ShortestPaths(const EdgeGraph& g, const std::vector<int>& sources,
-                                  const std::vector<double>* weights, std::vector<int>* predecessor) {
-  using Graph = boost::compressed_sparse_row_graph<boost::directedS, boost::no_property,
-                                                   boost::property<boost::edge_weight_t, double>>;
-  // Both directions of every edge, plus a virtual vertex n joined to every source by a zero edge
-  // (a multi-source Dijkstra with the stock algorithm).
-  const int n = g.vertices;
+namespace {
+
+using Graph = boost::compressed_sparse_row_graph<boost::directedS, boost::no_property,
+                                                 boost::property<boost::edge_weight_t, double>>;
+
+// Both directions of every edge of g (weights: one per edge, the lengths when null), plus
+// `extra` arcs; as a CSR graph, whose constructor wants the arcs sorted by source (sorted
+// stably, with their weights).
+Graph MakeGraph(const EdgeGraph& g, const std::vector<double>* weights, const std::vector<std::pair<int, int>>& extra,
+                std::size_t vertices) {
   std::vector<std::pair<int, int>> arcs;
   std::vector<double> w;
-  arcs.reserve(g.edges.size() * 2 + sources.size());
+  arcs.reserve(g.edges.size() * 2 + extra.size());
   w.reserve(arcs.capacity());
   for (std::size_t e = 0; e < g.edges.size(); ++e) {
     const double we = weights ? (*weights)[e] : g.lengths[e];
@@ -26,11 +29,10 @@ std::vector<double> ShortestPaths(const EdgeGraph& g, const std::vector<int>& so
     arcs.emplace_back(g.edges[e].second, g.edges[e].first);
     w.push_back(we);
   }
-  for (int s : sources) {
-    arcs.emplace_back(n, s);
+  for (const auto& arc : extra) {
+    arcs.push_back(arc);
     w.push_back(0.0);
   }
-  // The CSR constructor wants arcs sorted by source; sort arcs and weights together.
   std::vector<std::size_t> order(arcs.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return arcs[a] < arcs[b]; });
@@ -40,8 +42,19 @@ std::vector<double> ShortestPaths(const EdgeGraph& g, const std::vector<int>& so
     sortedArcs[i] = arcs[order[i]];
     sortedW[i] = w[order[i]];
   }
-  Graph graph(boost::edges_are_sorted, sortedArcs.begin(), sortedArcs.end(), sortedW.begin(),
-              static_cast<std::size_t>(n + 1));
+  return Graph(boost::edges_are_sorted, sortedArcs.begin(), sortedArcs.end(), sortedW.begin(), vertices);
+}
+
+}  // namespace
+
+std::vector<double> ShortestPaths(const EdgeGraph& g, const std::vector<int>& sources,
+                                  const std::vector<double>* weights, std::vector<int>* predecessor) {
+  // A virtual vertex n joined to every source by a zero arc: a multi-source Dijkstra with the
+  // stock algorithm.
+  const int n = g.vertices;
+  std::vector<std::pair<int, int>> toSources;
+  for (int src : sources) toSources.emplace_back(n, src);
+  const Graph graph = MakeGraph(g, weights, toSources, static_cast<std::size_t>(n + 1));
   std::vector<double> dist(static_cast<std::size_t>(n + 1), std::numeric_limits<double>::infinity());
   std::vector<std::size_t> pred(static_cast<std::size_t>(n + 1));
   boost::dijkstra_shortest_paths(
@@ -60,25 +73,13 @@ std::vector<double> ShortestPaths(const EdgeGraph& g, const std::vector<int>& so
 }
 
 struct ShortestPathGraph::Impl {
-  using Graph = boost::compressed_sparse_row_graph<boost::directedS, boost::no_property,
-                                                   boost::property<boost::edge_weight_t, double>>;
   Graph graph;
   std::size_t vertices = 0;
 };
 
 ShortestPathGraph::ShortestPathGraph(const EdgeGraph& g) : impl_(std::make_unique<Impl>()) {
-  std::vector<std::pair<std::pair<int, int>, double>> arcs;
-  arcs.reserve(g.edges.size() * 2);
-  for (std::size_t e = 0; e < g.edges.size(); ++e) {
-    arcs.push_back({g.edges[e], g.lengths[e]});
-    arcs.push_back({{g.edges[e].second, g.edges[e].first}, g.lengths[e]});
-  }
-  std::sort(arcs.begin(), arcs.end());
-  std::vector<std::pair<int, int>> ends(arcs.size());
-  std::vector<double> w(arcs.size());
-  for (std::size_t i = 0; i < arcs.size(); ++i) ends[i] = arcs[i].first, w[i] = arcs[i].second;
   impl_->vertices = static_cast<std::size_t>(g.vertices);
-  impl_->graph = Impl::Graph(boost::edges_are_sorted, ends.begin(), ends.end(), w.begin(), impl_->vertices);
+  impl_->graph = MakeGraph(g, nullptr, {}, impl_->vertices);
 }
 
 ShortestPathGraph::~ShortestPathGraph() = default;

@@ -48,5 +48,16 @@ std::vector<CollapsedStretch> DrawCollapses(const ColonAnatomy& a, int count, st
   return out;
 }
 
+const CollapsedStretch* CollapsedAt(const std::vector<CollapsedStretch>& collapses, double s, Posture posture) {
+  for (const CollapsedStretch& c : collapses)
+    if (s >= c.s0 && s <= c.s1 && (posture == Posture::Supine ? c.supine : c.prone)) return &c;
+  return nullptr;
+}
+
+std::string CollapseNote(const std::vector<CollapsedStretch>& collapses, double s, Posture posture) {
+  if (collapses.empty()) return "";
+  return CollapsedAt(collapses, s, posture) ? " collapsed=true" : " collapsed=false";
+}
+
 }  // namespace phantom
 }  // namespace colonmap

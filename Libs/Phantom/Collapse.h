@@ -6,6 +6,7 @@
 #include "ColonAnatomy.h"
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace colonmap {
@@ -17,6 +18,13 @@ namespace phantom {
 // (40%), the prone scan (40%) or both (20%). Sorted by s. Throws std::invalid_argument for a
 // count outside 0..4.
 std::vector<CollapsedStretch> DrawCollapses(const ColonAnatomy& anatomy, int count, std::uint32_t seed);
+
+// The stretch closed in this posture that contains material s, or nullptr.
+const CollapsedStretch* CollapsedAt(const std::vector<CollapsedStretch>& collapses, double s, Posture posture);
+
+// The truth's note on a wall point at material s (both phantoms' markups): "" without
+// collapses, else " collapsed=true" or " collapsed=false" for this posture.
+std::string CollapseNote(const std::vector<CollapsedStretch>& collapses, double s, Posture posture);
 
 }  // namespace phantom
 }  // namespace colonmap

@@ -312,9 +312,7 @@ ColonAnatomy MakeAnatomy(const PhantomOptions& options) {
 }
 
 const CollapsedStretch* ColonAnatomy::CollapsedAt(double s, Posture posture) const {
-  for (const CollapsedStretch& c : collapses)
-    if (s >= c.s0 && s <= c.s1 && (posture == Posture::Supine ? c.supine : c.prone)) return &c;
-  return nullptr;
+  return phantom::CollapsedAt(collapses, s, posture);
 }
 
 }  // namespace phantom

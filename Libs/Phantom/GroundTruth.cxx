@@ -1,5 +1,7 @@
 #include "GroundTruth.h"
 
+#include "Collapse.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -18,12 +20,6 @@ std::string SiteDescription(const ScanGeometry& scan, double s, double theta) {
   char buf[96];
   std::snprintf(buf, sizeof buf, "segment=%s s=%.4f theta=%.6f", SegmentName(scan.anatomy.SegmentOf(s)), s, theta);
   return buf;
-}
-
-// With collapses (issue 21) every wall point says whether this scan's lumen is closed there.
-std::string CollapseNote(const ScanGeometry& scan, double s) {
-  if (scan.anatomy.collapses.empty()) return "";
-  return scan.anatomy.CollapsedAt(s, scan.posture) ? " collapsed=true" : " collapsed=false";
 }
 
 int Count(double length, double step) { return std::max(2, static_cast<int>(std::lround(length / std::max(step, 1e-3))) + 1); }
@@ -110,7 +106,7 @@ MarkupList Polyps(const ScanGeometry& scan) {
     std::snprintf(buf, sizeof buf, "type=%s diameter=%.2f segment=%s s=%.4f theta=%.6f",
                   q.pedunculated ? "pedunculated" : "sessile", q.diameter, SegmentName(scan.anatomy.SegmentOf(q.s)), q.s,
                   q.theta);
-    p.description = buf + CollapseNote(scan, q.s);
+    p.description = buf + CollapseNote(scan.anatomy.collapses, q.s, scan.posture);
     m.points.push_back(p);
   }
   return m;
@@ -123,7 +119,7 @@ MarkupList EvaluationPoints(const ScanGeometry& scan) {
     ControlPoint p;
     p.label = e.label;
     p.position = scan.WallPoint(e.s, e.theta);
-    p.description = SiteDescription(scan, e.s, e.theta) + CollapseNote(scan, e.s);
+    p.description = SiteDescription(scan, e.s, e.theta) + CollapseNote(scan.anatomy.collapses, e.s, scan.posture);
     m.points.push_back(p);
   }
   return m;

@@ -539,16 +539,6 @@ Volume<short> RealColonCT(const RealColonPair& pair, Posture posture, const Real
   return grid;
 }
 
-namespace {
-// As the tube's (Phantom/GroundTruth.h): with collapses, whether this scan's lumen is closed at s.
-std::string CollapseNote(const RealColonPair& pair, Posture posture, double s) {
-  if (pair.collapses.empty()) return "";
-  for (const phantom::CollapsedStretch& c : pair.collapses)
-    if (s >= c.s0 && s <= c.s1 && (posture == Posture::Supine ? c.supine : c.prone)) return " collapsed=true";
-  return " collapsed=false";
-}
-}  // namespace
-
 MarkupList RealPolypMarkups(const RealColonPair& pair, Posture posture) {
   const RealColonScan& scan = posture == Posture::Supine ? pair.supine : pair.prone;
   MarkupList m;
@@ -560,7 +550,7 @@ MarkupList RealPolypMarkups(const RealColonPair& pair, Posture posture) {
     char buf[160];
     std::snprintf(buf, sizeof buf, "type=%s diameter=%.2f segment=%s s=%.4f theta=%.6f",
                   q.pedunculated ? "pedunculated" : "sessile", q.diameter, phantom::SegmentName(q.segment), q.s, q.theta);
-    p.description = buf + CollapseNote(pair, posture, q.s);
+    p.description = buf + phantom::CollapseNote(pair.collapses, q.s, posture);
     m.points.push_back(p);
   }
   return m;
@@ -576,7 +566,7 @@ MarkupList RealEvaluationMarkups(const RealColonPair& pair, Posture posture) {
     p.position = scan.SitePosition(e);
     char buf[96];
     std::snprintf(buf, sizeof buf, "segment=%s s=%.4f theta=%.6f", phantom::SegmentName(e.segment), e.s, e.theta);
-    p.description = buf + CollapseNote(pair, posture, e.s);
+    p.description = buf + phantom::CollapseNote(pair.collapses, e.s, posture);
     m.points.push_back(p);
   }
   return m;

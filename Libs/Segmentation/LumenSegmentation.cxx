@@ -132,14 +132,10 @@ Candidate BridgePieces(const Volume<short>& ct, const std::vector<Candidate*>& p
             out.crop.mask.At(c->crop.first[0] - out.crop.first[0] + x, c->crop.first[1] - out.crop.first[1] + y,
                              c->crop.first[2] - out.crop.first[2] + z) = 1;
   }
-  // Bridge voxels: 2 in the domain (kept apart), 1 once the domain is one mask again.
-  Volume<unsigned char> virtualMask = out.crop.mask.Like<unsigned char>(0);
-  for (const Bridge& b : bridges) {
-    Volume<unsigned char> drawn = out.crop.mask;
-    DrawBridge(b, drawn, 2);
-    for (std::size_t v = 0; v < drawn.voxels.size(); ++v)
-      if (drawn.voxels[v] == 2) virtualMask.voxels[v] = 1;
-  }
+  // Bridge voxels: drawn as 2 into the zeros of the pieces' mask (kept apart), then the virtual mask.
+  Volume<unsigned char> virtualMask = out.crop.mask;
+  for (const Bridge& b : bridges) DrawBridge(b, virtualMask, 2);
+  for (unsigned char& v : virtualMask.voxels) v = v == 2;
   // The crop's border stays zero (the growth needs it).
   for (std::size_t z = 0; z < virtualMask.size[2]; ++z)
     for (std::size_t y = 0; y < virtualMask.size[1]; ++y)
