@@ -85,6 +85,8 @@ int RunModule(const char* moduleName, const char* xml, int argc, char** argv, Mo
       outputs.Rollback();
       progress.Note(std::string(moduleName) + ": cancelled, no output written");
       return 0;
+    } catch (const Error& e) {
+      throw Error(outputs.UserNames(e.what()));  // the user's output names, not our temporaries
     }
   } catch (const Error& e) {
     PrintError(moduleName, e.what());
@@ -115,8 +117,12 @@ std::map<std::string, std::string> RunNestedModule(ModuleContext& parent, const 
     Progress progress(moduleName, parent.progress);
     OutputTransaction outputs;
     ModuleContext ctx{moduleName, description, args, progress, outputs, {}};
-    body(ctx);
-    outputs.Commit();
+    try {
+      body(ctx);
+      outputs.Commit();
+    } catch (const Error& e) {
+      throw Error(outputs.UserNames(e.what()));  // the stage's output names, not its temporaries
+    }
     progress.Finish();
     return ctx.returnValues;
   } catch (const Cancelled&) {

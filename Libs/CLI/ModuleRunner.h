@@ -8,6 +8,7 @@
 #include "CLI/OutputTransaction.h"
 #include "CLI/Progress.h"
 
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -41,6 +42,14 @@ struct ModuleContext {
   std::map<std::string, std::string> returnValues;  // written to --returnparameterfile
 
   void SetReturn(const std::string& name, const std::string& value);
+  // What a reader tells the user about how it read a file (io::NoteSink): "<Module>: note: ..."
+  // on stdout through the progress, never stderr. Notes about our own hidden intermediates (a
+  // pipeline's stage folders) are dropped: the user heard it once, about their own file.
+  std::function<void(const std::string&)> ReaderNotes() {
+    return [this](const std::string& text) {
+      if (text.find(".colonmap-tmp-") == std::string::npos) progress.Note(moduleName + ": note: " + text);
+    };
+  }
 };
 
 using ModuleBody = void (*)(ModuleContext&);

@@ -84,6 +84,9 @@ void CheckOutputFolders(const ModuleDescription& description, const Arguments& a
     const std::string value = args.GetString(p->name);
     if (value.empty()) continue;
     std::string what = p->label.empty() ? p->name : p->label;  // "Output folder" -> "output folder ..."
+    const std::string mark = " (required)";                      // the label's mark, not the message's
+    if (what.size() > mark.size() && what.compare(what.size() - mark.size(), mark.size(), mark) == 0)
+      what.erase(what.size() - mark.size());
     what[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(what[0])));
     CheckOutputFolder(value, what);
   }

@@ -2,6 +2,7 @@
 
 #include "Core/Error.h"
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <system_error>
@@ -98,6 +99,19 @@ void OutputTransaction::Commit() {
     if (ec) throw Error("output '" + finals_[i] + "': cannot rename into place (" + ec.message() + ")");
   }
   committed_ = true;
+}
+
+std::string OutputTransaction::UserNames(std::string message) const {
+  // Longest first: ".colonmap-tmp-T-1" is a prefix of ".colonmap-tmp-T-12".
+  std::vector<std::size_t> order(temps_.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return temps_[a].size() > temps_[b].size(); });
+  for (std::size_t i : order) {
+    for (std::size_t at = message.find(temps_[i]); at != std::string::npos;
+         at = message.find(temps_[i], at + finals_[i].size()))
+      message.replace(at, temps_[i].size(), finals_[i]);
+  }
+  return message;
 }
 
 void OutputTransaction::Rollback() {

@@ -37,6 +37,10 @@ class OutputTransaction {
 
   const std::vector<std::string>& FinalPaths() const { return finals_; }
 
+  // `message` with every temporary path (and every path inside a temporary folder) replaced by
+  // its final name: errors name the user's paths, never our hidden ones (issue 24).
+  std::string UserNames(std::string message) const;
+
  private:
   std::string tag_;
   int counter_ = 0;

@@ -10,7 +10,7 @@
 namespace colonmap::io {
 
 template <typename T>
-Volume<T> ReadImage(const std::string& path, const std::string& what) {
+Volume<T> ReadImage(const std::string& path, const std::string& what, const NoteSink& note) {
   detail::ImageGeometry g;
   Volume<T> v;
   detail::ItkReadImage<T>(path, what, g, v.voxels);
@@ -25,6 +25,8 @@ Volume<T> ReadImage(const std::string& path, const std::string& what) {
     throw InputError(what, path, "voxel spacing is not a positive finite number");
   if (!v.origin.allFinite() || !v.direction.allFinite() || std::abs(v.direction.determinant()) < 1e-6)
     throw InputError(what, path, "image origin or direction is not valid");
+  if (note)
+    for (const std::string& n : g.notes) note(n);
   return v;
 }
 
@@ -42,9 +44,9 @@ void WriteImage(const Volume<T>& v, const std::string& path, const std::string& 
   detail::ItkWriteImage<T>(g, v.voxels.data(), path, what, compression == Compression::Fast);
 }
 
-template Volume<short> ReadImage<short>(const std::string&, const std::string&);
-template Volume<unsigned char> ReadImage<unsigned char>(const std::string&, const std::string&);
-template Volume<float> ReadImage<float>(const std::string&, const std::string&);
+template Volume<short> ReadImage<short>(const std::string&, const std::string&, const NoteSink&);
+template Volume<unsigned char> ReadImage<unsigned char>(const std::string&, const std::string&, const NoteSink&);
+template Volume<float> ReadImage<float>(const std::string&, const std::string&, const NoteSink&);
 template void WriteImage<short>(const Volume<short>&, const std::string&, const std::string&, Compression);
 template void WriteImage<unsigned char>(const Volume<unsigned char>&, const std::string&, const std::string&, Compression);
 template void WriteImage<float>(const Volume<float>&, const std::string&, const std::string&, Compression);

@@ -5,14 +5,18 @@
 // Origin, spacing and direction are honoured. `what` names the input in error messages.
 #include "Core/Volume.h"
 
+#include <functional>
 #include <string>
 
 namespace colonmap::io {
 
 // Throws colonmap::Error ("<what> '<path>': <problem>") for a missing file, an unknown format,
 // a folder without DICOM, a truncated or corrupt file, or non-finite / non-positive spacing.
+// `note` hears what the user should know about how the file was read (one line each, for stdout):
+// axes stored with a negative spacing or a left-handed frame, read as flipped axes.
+using NoteSink = std::function<void(const std::string&)>;
 template <typename T>
-Volume<T> ReadImage(const std::string& path, const std::string& what);
+Volume<T> ReadImage(const std::string& path, const std::string& what, const NoteSink& note = {});
 
 enum class Compression {
   Fast,  // gzip level 1: label maps and smooth images shrink 10-100x at little cost

@@ -1,4 +1,7 @@
 #include "IO/ItkImageBridge.h"
+#include "IO/FileNames.h"
+#include "IO/DicomCheck.h"
+#include "IO/MetaImageCheck.h"
 #include "IO/NiftiCheck.h"
 
 #include "Core/Error.h"
@@ -11,7 +14,12 @@
 #include <itkImageSeriesReader.h>
 #include <itkMetaDataObject.h>
 
+#include <gdcmTrace.h>
+
 #include <algorithm>
+#include <cctype>
+#include <cstring>
+#include <sstream>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -26,6 +34,9 @@ using ItkImage = itk::Image<T, 3>;
 
 std::string OneLine(const itk::ExceptionObject& e) {
   std::string s = e.GetDescription();
+  // "ITK ERROR: NrrdImageIO(0x55..): what went wrong": the object's address tells the user nothing.
+  if (s.rfind("ITK ERROR: ", 0) == 0 || s.rfind("itk::ERROR: ", 0) == 0)
+    if (const std::size_t at = s.find("): "); at != std::string::npos) s.erase(0, at + 3);
   std::replace(s.begin(), s.end(), '\n', ' ');
   while (!s.empty() && s.back() == ' ') s.pop_back();
   return s;
@@ -43,6 +54,14 @@ std::string Millimetres(double v) {
 
 template <typename T>
 typename ItkImage<T>::Pointer ReadDicomSeries(const std::string& folder, const std::string& what) {
+  // GDCM's own log (10 lines and more on a bad file) must not come before our one line; what
+  // matters in it is checked here and said in that line.
+  gdcm::Trace::WarningOff();
+  gdcm::Trace::ErrorOff();
+  gdcm::Trace::DebugOff();
+  // Before GDCM opens any file: it aborts the process on a slice cut short, and drops a slice of
+  // another size into a series of its own.
+  CheckDicomFolder(folder, what);
   // Look for a DICOM file first: GDCMSeriesFileNames warns on stderr when there is none.
   bool anyDicom = false;
   auto probe = itk::GDCMImageIO::New();
@@ -101,6 +120,58 @@ void CheckNrrdHeader(const std::string& path, const std::string& what) {
   }
 }
 
+bool EndsWith(const std::string& s, const char* tail) {
+  const std::size_t n = std::strlen(tail);
+  return s.size() >= n && s.compare(s.size() - n, n, tail) == 0;
+}
+
+// Axes (1-based) that a NRRD ("spacings:") or MetaImage ("ElementSpacing =") text header gives a
+// negative spacing. ITK reads them as positive spacings along flipped axes, silently (issue 24).
+std::vector<int> HeaderNegativeSpacingAxes(const std::string& path) {
+  const std::string lower = LowerCase(path);
+  const bool nrrd = EndsWith(lower, ".nrrd") || EndsWith(lower, ".nhdr");
+  const bool meta = EndsWith(lower, ".mha") || EndsWith(lower, ".mhd");
+  std::vector<int> axes;
+  if (!nrrd && !meta) return axes;
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  for (int n = 0; n < 200 && std::getline(in, line) && !(nrrd && (line.empty() || line == "\r")); ++n) {
+    const std::string l = LowerCase(line);
+    std::size_t at = std::string::npos;
+    if (nrrd && l.rfind("spacings:", 0) == 0) at = 9;
+    if (meta && l.rfind("elementspacing", 0) == 0) at = l.find('=') == std::string::npos ? std::string::npos : l.find('=') + 1;
+    if (meta && l.rfind("elementdatafile", 0) == 0) break;  // the voxels follow
+    if (at == std::string::npos) continue;
+    std::istringstream values(l.substr(at));
+    double v;
+    for (int axis = 1; values >> v; ++axis)
+      if (v < 0.0) axes.push_back(axis);
+    break;
+  }
+  return axes;
+}
+
+// The one note on how the file's axes were read: axes stored with a negative spacing (read as
+// positive spacings along flipped axes, as ITK and Slicer do), or a left-handed frame.
+void NoteFlippedAxes(const std::string& path, const std::string& what, std::vector<int> axes, ImageGeometry& g) {
+  for (unsigned d = 0; d < 3; ++d)
+    if (g.spacing[d] < 0.0) {  // a reader that kept the sign: flip the axis ourselves
+      g.spacing[d] = -g.spacing[d];
+      for (unsigned e = 0; e < 3; ++e) g.direction[3 * e + d] = -g.direction[3 * e + d];
+      if (std::find(axes.begin(), axes.end(), int(d) + 1) == axes.end()) axes.push_back(int(d) + 1);
+    }
+  std::sort(axes.begin(), axes.end());
+  const double* m = g.direction;
+  const double det = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) + m[2] * (m[3] * m[7] - m[4] * m[6]);
+  std::string list;
+  for (int a : axes) list += (list.empty() ? "" : ", ") + std::to_string(a);
+  if (!axes.empty())
+    g.notes.push_back(what + " '" + path + "': negative voxel spacing on axis " + list +
+                      " in the file: read as a positive spacing with that axis flipped");
+  else if (det < 0.0)
+    g.notes.push_back(what + " '" + path + "': its axes form a left-handed frame (one axis stored flipped): read as stored");
+}
+
 }  // namespace
 
 template <typename T>
@@ -112,7 +183,10 @@ void ItkReadImage(const std::string& path, const std::string& what, ImageGeometr
   std::error_code ec;
   if (!IsHostPath(path) && !fs::exists(path, ec)) throw InputError(what, path, "file does not exist");
   if (!IsHostPath(path)) CheckNrrdHeader(path, what);
-  if (!IsHostPath(path)) CheckNiftiFile(path, what);
+  if (!IsHostPath(path)) CheckMetaImageFile(path, what);
+  std::vector<int> negativeAxes;
+  if (!IsHostPath(path)) negativeAxes = CheckNiftiFile(path, what);
+  if (!IsHostPath(path) && negativeAxes.empty()) negativeAxes = HeaderNegativeSpacingAxes(path);
   typename ItkImage<T>::Pointer image;
   try {
     if (!IsHostPath(path) && fs::is_directory(path, ec)) {
@@ -136,6 +210,7 @@ void ItkReadImage(const std::string& path, const std::string& what, ImageGeometr
     g.origin[d] = image->GetOrigin()[d];
     for (unsigned e = 0; e < 3; ++e) g.direction[3 * d + e] = image->GetDirection()[d][e];
   }
+  NoteFlippedAxes(path, what, negativeAxes, g);
   const std::size_t n = g.size[0] * g.size[1] * g.size[2];
   voxels.assign(image->GetBufferPointer(), image->GetBufferPointer() + n);
 }

@@ -13,6 +13,7 @@ struct ImageGeometry {
   double spacing[3] = {1, 1, 1};
   double origin[3] = {0, 0, 0};
   double direction[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};  // row-major, columns are the axes
+  std::vector<std::string> notes;  // what the user should know about how the file was read
 };
 
 // Reads a file (any ITK format) or a folder holding a DICOM series. Throws colonmap::Error.

@@ -1,4 +1,5 @@
 #include "IO/MarkupsIO.h"
+#include "IO/FileNames.h"
 
 #include "Core/Error.h"
 
@@ -18,11 +19,6 @@ namespace {
 
 bool EndsWith(const std::string& s, const std::string& e) {
   return s.size() >= e.size() && s.compare(s.size() - e.size(), e.size(), e) == 0;
-}
-
-std::string Lower(std::string s) {
-  for (auto& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
 }
 
 std::string ReadWholeFile(const std::string& path, const std::string& what) {
@@ -167,14 +163,14 @@ std::string ToFcsv(const MarkupList& list) {
 }  // namespace
 
 MarkupList ReadMarkups(const std::string& path, const std::string& what) {
-  const std::string lower = Lower(path);
+  const std::string lower = LowerCase(path);
   if (EndsWith(lower, ".fcsv")) return ReadFcsv(path, what);
   if (EndsWith(lower, ".json")) return ReadMarkupsJson(path, what);
   throw InputError(what, path, "unknown point list format (expected .mrk.json or .fcsv)");
 }
 
 void WriteMarkups(const MarkupList& list, const std::string& path, const std::string& what) {
-  const std::string lower = Lower(path);
+  const std::string lower = LowerCase(path);
   if (EndsWith(lower, ".fcsv")) return WriteText(ToFcsv(list), path, what);
   if (EndsWith(lower, ".json")) return WriteText(ToJson(list).dump(2) + "\n", path, what);
   throw InputError(what, path, "unknown point list format (expected .mrk.json or .fcsv)");

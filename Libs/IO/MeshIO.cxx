@@ -1,4 +1,5 @@
 #include "IO/MeshIO.h"
+#include "IO/FileNames.h"
 
 #include "Core/Error.h"
 
@@ -31,11 +32,6 @@ namespace fs = std::filesystem;
 namespace colonmap::io {
 namespace {
 
-std::string Lower(std::string s) {
-  for (auto& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
 // Collects VTK errors of one reader/writer instead of letting them reach stderr (observers are
 // per object: no global state is touched).
 struct ErrorCollector {
@@ -47,7 +43,10 @@ struct ErrorCollector {
       auto* self = static_cast<ErrorCollector*>(client);
       if (event == vtkCommand::ErrorEvent && self->message.empty() && data) {
         self->message = static_cast<const char*>(data);
+        // "ERROR: In <source file>, line N\n<class> (0x..): <what went wrong>": the user needs the last part.
+        if (const std::size_t at = self->message.find("): "); at != std::string::npos) self->message.erase(0, at + 3);
         for (auto& c : self->message) if (c == '\n') c = ' ';
+        while (!self->message.empty() && self->message.back() == ' ') self->message.pop_back();
       }
     });
     object->AddObserver(vtkCommand::ErrorEvent, command);
@@ -73,7 +72,7 @@ vtkSmartPointer<vtkPolyData> ReadPolyData(const std::string& path, const std::st
   if (path.empty()) throw Error(what + ": no file given");
   if (!fs::exists(path, ec)) throw InputError(what, path, "file does not exist");
   if (fs::is_directory(path, ec)) throw InputError(what, path, "is a folder, not a surface file");
-  const std::string ext = Lower(fs::path(path).extension().string());
+  const std::string ext = LowerCase(fs::path(path).extension().string());
   vtkSmartPointer<vtkPolyData> output;
   std::string error;
   if (ext == ".vtp") {
@@ -102,6 +101,7 @@ vtkSmartPointer<vtkPolyData> ReadPolyData(const std::string& path, const std::st
   } else {
     throw InputError(what, path, "unknown surface format (expected .vtp, .vtk or .stl)");
   }
+  if (error.find("No Points element") != std::string::npos) throw InputError(what, path, "holds no points");
   if (!error.empty()) throw InputError(what, path, "cannot be read (" + error + ")");
   if (!output || output->GetNumberOfPoints() == 0) throw InputError(what, path, "holds no points");
   return output;
@@ -173,7 +173,7 @@ Eigen::MatrixXd FromPoints(vtkPoints* points) {
 
 void WritePolyData(vtkPolyData* data, const std::string& path, const std::string& what) {
   QuietVtkLog();
-  const std::string ext = Lower(fs::path(path).extension().string());
+  const std::string ext = LowerCase(fs::path(path).extension().string());
   std::string error;
   int ok = 0;
   if (ext == ".vtp") {

@@ -43,10 +43,10 @@ struct Stream {
 
 }  // namespace
 
-void CheckNiftiFile(const std::string& path, const std::string& what) {
+std::vector<int> CheckNiftiFile(const std::string& path, const std::string& what) {
   std::string lower = path;
   for (auto& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (!EndsWith(lower, ".nii") && !EndsWith(lower, ".nii.gz")) return;
+  if (!EndsWith(lower, ".nii") && !EndsWith(lower, ".nii.gz")) return {};
   Stream in(path);
   if (!in.file) throw InputError(what, path, "cannot be opened");
   unsigned char h[540] = {};
@@ -76,6 +76,9 @@ void CheckNiftiFile(const std::string& path, const std::string& what) {
                                         : std::isinf(pixdim[k]) ? std::string("infinite")
                                                                 : std::string("0")) +
                                        ", not a number of mm");
+  std::vector<int> negative;
+  for (int k = 1; k <= std::min(n, 3); ++k)
+    if (pixdim[k] < 0.0) negative.push_back(k);
   double voxels = 1.0;
   for (int k = 1; k <= n; ++k) voxels *= std::max(1.0, dim[k]);
   const double bytes = std::max(offset, two ? 544.0 : 352.0) + voxels * bitpix / 8.0;
@@ -85,7 +88,7 @@ void CheckNiftiFile(const std::string& path, const std::string& what) {
     if (!ec && fileBytes < bytes)
       throw InputError(what, path, "is truncated: " + std::to_string(static_cast<long long>(fileBytes)) + " of " +
                                        std::to_string(static_cast<long long>(bytes)) + " bytes");
-    return;
+    return negative;
   }
   // A .nii.gz: read the stream through; it ends early, or with an error, when it is cut.
   double total = two ? 540.0 : 348.0;
@@ -103,6 +106,7 @@ void CheckNiftiFile(const std::string& path, const std::string& what) {
   if (total < bytes)
     throw InputError(what, path, "is truncated: " + std::to_string(static_cast<long long>(total)) + " of " +
                                      std::to_string(static_cast<long long>(bytes)) + " bytes");
+  return negative;
 }
 
 }  // namespace colonmap::io

@@ -3,6 +3,7 @@
 #include "Analysis/MidlineProjection.h"
 #include "Core/Error.h"
 #include "Core/RunConcurrently.h"
+#include "Landmarks/BridgedWall.h"
 #include "Landmarks/LevelCentreline.h"
 #include "Surface/MeshTopology.h"
 #include "Surface/SignedVolume.h"
@@ -102,6 +103,24 @@ void Lap(std::vector<std::pair<std::string, double>>& times, Clock::time_point& 
   t0 = t;
 }
 
+// Candidates on wall not seen (bridged collapsed stretches) are flagged for the joint choice.
+void MarkBridgedCandidates(const TriangleMesh& closed, const Eigen::VectorXd& alongColon, const Eigen::MatrixXd& rule,
+                           const Eigen::VectorXd& ruleArc, FlexureCandidates& candidates) {
+  if (!closed.pointData.count("Virtual")) return;
+  std::vector<FlexureCandidate*> all;
+  for (auto& list : candidates.flexure)
+    for (FlexureCandidate& c : list) all.push_back(&c);
+  Eigen::MatrixXd at(static_cast<Eigen::Index>(all.size()), 3);
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const Eigen::Index j = std::clamp<Eigen::Index>(
+        static_cast<Eigen::Index>(std::lower_bound(ruleArc.data(), ruleArc.data() + ruleArc.size(), all[i]->arc) - ruleArc.data()),
+        0, rule.rows() - 1);
+    at.row(static_cast<Eigen::Index>(i)) = rule.row(j);
+  }
+  const std::vector<bool> bridged = OnBridgedWall(closed, alongColon, at);
+  for (std::size_t i = 0; i < all.size(); ++i) all[i]->bridged = bridged[i];
+}
+
 }  // namespace
 
 ColonAxis FindColonAxis(TriangleMesh closed, const LandmarkOptions& o, ProgressSink& progress) {
@@ -137,7 +156,9 @@ ColonAxis FindColonAxis(TriangleMesh closed, const LandmarkOptions& o, ProgressS
   x.centerline = std::move(c);
   progress.Report(0.95);
   const Eigen::MatrixXd& rule = x.RuleCurve();
-  x.candidates = FindFlexureCandidates(rule, analysis::ArcLength(rule), o.flexures);
+  const Eigen::VectorXd ruleArc = analysis::ArcLength(rule);
+  x.candidates = FindFlexureCandidates(rule, ruleArc, o.flexures);
+  MarkBridgedCandidates(closed, x.alongColon, rule, ruleArc, x.candidates);
   progress.Report(1.0);
   Lap(x.times, t0, "flexures");
   x.closed = std::move(closed);
@@ -206,6 +227,9 @@ std::array<LandmarkResult, 2> FindLandmarksForPair(TriangleMesh a, TriangleMesh 
     notes[k].defaultDisagreementMm = choice.defaultDisagreementMm;
     notes[k].alignmentCost = align.meanCost;
     notes[k].ownRuleArc = FlexuresOnCentred(x[k], x[k].candidates.byDefault.arc).arc;
+    for (int f = 0; f < 4; ++f)
+      for (const FlexureCandidate& c : x[k].candidates.flexure[f])
+        if (c.isDefault) notes[k].ownRuleBridged[f] = c.bridged;
   }
   std::vector<std::pair<std::string, double>> jointTime;
   Lap(jointTime, t0, "joint flexures");
@@ -347,6 +371,8 @@ std::string SummaryJson(const LandmarkResult& r, bool withTimes) {
       jn["flexures"][Flexures::Names()[k]] = {{"choice", n.how[k]},
                                               {"ownRulesArcLengthMm", n.ownRuleArc[k]},
                                               {"ownRulesDisagreementMm", n.defaultDisagreementMm[k]}};
+    for (int k = 0; k < 4; ++k)  // only where it applies: a colon in one piece keeps its file
+      if (n.ownRuleBridged[k]) jn["flexures"][Flexures::Names()[k]]["ownRulesOnBridgedWall"] = true;
     j["jointChoice"] = jn;
   } else {
     // One scan alone: its flexures come from its own rules (the registration will not trust them).

@@ -50,6 +50,7 @@ struct JointNote {
   std::array<double, 4> ownRuleArc{};      // this scan's own rules' flexures (mm, on the centreline)
   std::array<double, 4> defaultDisagreementMm{};  // own rules against the other scan's, through the alignment
   double alignmentCost = 0.0;              // CentrelineAlignment::meanCost
+  std::array<bool, 4> ownRuleBridged{};    // own rules' flexure on bridged wall (a collapsed stretch)
 };
 
 struct LandmarkResult {

@@ -15,6 +15,7 @@ struct FlexureCandidate {
   double arc = 0.0;        // median arc length of the group (mm from the anal end)
   double share = 0.0;      // fraction of the rule runs that put the flexure in this group
   bool isDefault = false;  // the default thresholds' choice lies in this group
+  bool bridged = false;    // on wall not seen (a collapsed stretch, BridgedWall.h): worth nothing jointly
 };
 
 struct FlexureCandidates {

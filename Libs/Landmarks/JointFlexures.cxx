@@ -15,13 +15,18 @@ struct Option {
 std::vector<Option> OptionsFor(int k, const FlexureCandidates& a, const FlexureCandidates& b,
                                const CentrelineAlignment& m, const std::array<std::string, 2>& names,
                                const JointFlexureOptions& o) {
+  // A candidate on bridged wall (a collapsed stretch) was found on the virtual tube, not on the
+  // colon: it is worth nothing, never carried, and pairs only with another bridged one (its
+  // "agreement" with a seen flexure is no evidence: tube seed 6, one collapse, agreed within 30 mm
+  // and was 38 mm off). Where one scan saw the flexure, that one is carried over.
+  const auto worth = [](const FlexureCandidate& c) { return c.bridged ? 0.0 : c.share; };
   std::vector<Option> out;
   for (const FlexureCandidate& ca : a.flexure[k])
     for (const FlexureCandidate& cb : b.flexure[k])
-      if (std::fabs(m.AToB(ca.arc) - cb.arc) <= o.agreeMm)
+      if (ca.bridged == cb.bridged && std::fabs(m.AToB(ca.arc) - cb.arc) <= o.agreeMm)
         out.push_back({ca.arc, cb.arc, ca.share + cb.share, ca.isDefault && cb.isDefault ? "agreed" : "rechosen"});
-  for (const FlexureCandidate& ca : a.flexure[k]) out.push_back({ca.arc, m.AToB(ca.arc), ca.share, "carried from " + names[0]});
-  for (const FlexureCandidate& cb : b.flexure[k]) out.push_back({m.BToA(cb.arc), cb.arc, cb.share, "carried from " + names[1]});
+  for (const FlexureCandidate& ca : a.flexure[k]) out.push_back({ca.arc, m.AToB(ca.arc), worth(ca), "carried from " + names[0]});
+  for (const FlexureCandidate& cb : b.flexure[k]) out.push_back({m.BToA(cb.arc), cb.arc, worth(cb), "carried from " + names[1]});
   std::stable_sort(out.begin(), out.end(), [](const Option& x, const Option& y) { return x.worth > y.worth; });
   if (static_cast<int>(out.size()) > o.optionsPerFlexure) out.resize(static_cast<std::size_t>(o.optionsPerFlexure));
   return out;

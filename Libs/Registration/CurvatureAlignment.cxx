@@ -235,6 +235,9 @@ CurvatureWarp AlignCurvatureImages(const FlatSegment& supine, const Eigen::Vecto
   // 2 sigma, 4 sigma whose image of the supine mesh has no reversed face is kept.
   const double hs = vs / N, hp = vp / N;
   const Eigen::VectorXd area0 = SignedAreas(supine.uv, supine.F);
+  // Slivers (flat area below 1e-9 of the mean face's; 1e-22..1e-18 seen) have no orientation
+  // worth keeping: rounding flips them under any warp, and one of them vetoed every smoothing.
+  const double sliver = 1e-9 * area0.cwiseAbs().mean();
   for (int attempt = 0; attempt < 3; ++attempt) {
     const double sigma = std::max(0.5, o.smoothSigmaRows) * (1 << attempt);
     const int half = static_cast<int>(std::ceil(3 * sigma));
@@ -281,8 +284,19 @@ CurvatureWarp AlignCurvatureImages(const FlatSegment& supine, const Eigen::Vecto
     const Eigen::VectorXd area = SignedAreas(w.Apply(supine.uv), supine.F);
     w.valid = true;
     for (Eigen::Index f = 0; f < area.size(); ++f)
-      if (area0(f) > 0 && !(area(f) > 0)) w.valid = false;
+      if (area0(f) > sliver && !(area(f) > 0)) w.valid = false;
     if (w.valid) break;
+  }
+  if (!w.valid) {
+    // One shift (the mean of the unsmoothed path's) on the affine length map.
+    double mean = 0;
+    for (double x : S) mean += x;
+    const double c = mean / N / M * prone.period;
+    w.supineV = {s0, s1};
+    w.proneV = {p0, p1};
+    w.shift = {c, c};
+    w.shiftOnly = true;
+    w.valid = true;
   }
   progress.Report(1.0);
   return w;

@@ -18,8 +18,12 @@
 // row and smoothed (Gaussian, more where the result would reverse a thin supine triangle that
 // straddles a kink), gives the warp
 //   W(u, v) = (u + s(v), w(v)),  w strictly increasing, w(ends) = prone ends,
-// which is one-to-one (Jacobian determinant w'(v) > 0). Eigen and Core in and out; OpenCV only
-// in the .cxx.
+// which is one-to-one (Jacobian determinant w'(v) > 0). Slivers (flat area below 1e-9 of the mean
+// face's) do not count as reversed. When every smoothing still reverses a supine face, the warp
+// keeps only the path's mean shift around the colon on the affine length map: a rotation of the
+// rectangle, one-to-one by construction. Why not the affine map alone: the mean shift corrects a
+// cut taenia found one taenia off in one scan (a third of the width). Eigen and Core in and out;
+// OpenCV only in the .cxx.
 #include "Core/Cancel.h"
 #include "Registration/SurfaceMap.h"
 
@@ -51,6 +55,7 @@ class CurvatureWarp {
   int rows = 0;
   double smoothSigmaRows = 0.0;  // the smoothing used
   bool valid = false;            // no supine face reversed by W (else do not use W)
+  bool shiftOnly = false;        // W is the affine length map and one shift (see above)
 
   Eigen::Vector2d Apply(const Eigen::Vector2d& uv) const;
   Eigen::MatrixXd Apply(const Eigen::MatrixXd& uv) const;  // row-wise

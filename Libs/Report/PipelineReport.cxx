@@ -2,6 +2,7 @@
 
 #include "Report/HtmlReport.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -173,6 +174,35 @@ void Segments(const PipelineReportInput& in, HtmlReport& page) {
              rows);
 }
 
+std::string JoinNumbers(const json& list, int digits) {
+  std::string out;
+  for (const auto& v : list) out += (out.empty() ? "" : ", ") + Fixed(v.get<double>(), digits);
+  return out.empty() ? "-" : out;
+}
+
+void Pieces(const PipelineReportInput& in, HtmlReport& page) {
+  const json pieces = PiecesSummary(in.summary.value("stages", json::array()), in.stages.registration);
+  if (pieces.is_null()) return;
+  std::vector<std::vector<std::string>> rows;
+  for (const char* scan : {"supine", "prone"}) {
+    if (!pieces.contains(scan)) continue;
+    const json& p = pieces[scan];
+    std::string unseen;
+    for (const auto& [seg, f] : p["wallNotSeen"].items())
+      unseen += (unseen.empty() ? "" : ", ") + seg + " " + Fixed(100.0 * f.get<double>(), 0) + "%";
+    rows.push_back({std::string(scan), std::to_string(p["pieces"].get<int>()), JoinNumbers(p["pieceLengthsMm"], 0),
+                    JoinNumbers(p["gapsBridgedMm"], 0), Fixed(p["virtualLumenMl"].get<double>(), 1),
+                    unseen.empty() ? "-" : unseen});
+  }
+  page.Heading("Colon pieces and collapsed stretches");
+  page.Paragraph("A collapsed stretch splits the air of the colon into pieces. The segmentation ordered the pieces "
+                 "from the caecum and bridged each gap with virtual lumen; the wall of that lumen was not seen in the "
+                 "CT, and findings that land on it are marked visible=false and placed at the nearest open wall.");
+  page.Table({"scan", "pieces", "piece lengths mm (from the caecum)", "gaps bridged mm", "virtual lumen ml",
+              "wall not seen, per segment"},
+             rows);
+}
+
 void Times(const PipelineReportInput& in, HtmlReport& page) {
   page.Heading("Stage times");
   std::vector<std::vector<std::string>> rows;
@@ -194,6 +224,47 @@ json ReadJsonOrNull(const std::string& path) {
   }
 }
 
+json PiecesSummary(const json& stages, const json& registration) {
+  // Comma-separated numbers of a return parameter ("729,160,230"; empty for one piece).
+  const auto numbers = [](const std::string& text) {
+    json out = json::array();
+    std::size_t start = 0;
+    while (start < text.size()) {
+      const std::size_t end = std::min(text.find(',', start), text.size());
+      try {
+        out.push_back(std::stod(text.substr(start, end - start)));
+      } catch (const std::exception&) {
+      }
+      start = end + 1;
+    }
+    return out;
+  };
+  json out = json::object();
+  bool collapsed = false;
+  for (const char* scan : {"supine", "prone"}) {
+    json results;
+    for (const auto& s : stages)
+      if (s.value("name", std::string()) == std::string("segmentation ") + scan) results = s.value("results", json::object());
+    if (!results.is_object() || results.empty()) continue;
+    const json lengths = numbers(results.value("pieceLengths", std::string()));
+    const int pieces = std::max<int>(1, static_cast<int>(lengths.size()));
+    collapsed = collapsed || pieces > 1;
+    json unseen = json::object();
+    for (const char* seg : kSegments) {
+      const json segment = registration.is_object() ? registration.value("segments", json::object()).value(seg, json()) : json();
+      const double f = segment.is_object() ? segment.value(std::string(scan) + "VirtualFraction", 0.0) : 0.0;
+      if (f > 0.0) unseen[seg] = f;
+    }
+    const json volume = numbers(results.value("virtualVolume", std::string("0")));
+    out[scan] = {{"pieces", pieces},
+                 {"pieceLengthsMm", lengths},
+                 {"gapsBridgedMm", numbers(results.value("pieceGaps", std::string()))},
+                 {"virtualLumenMl", volume.empty() ? 0.0 : volume[0].get<double>()},
+                 {"wallNotSeen", unseen}};
+  }
+  return collapsed ? out : json();
+}
+
 std::string PipelineReportHtml(const PipelineReportInput& in) {
   HtmlReport page("ColonMap: supine-prone registration report");
   const json inputs = in.summary.value("inputs", json::object());
@@ -205,6 +276,7 @@ std::string PipelineReportHtml(const PipelineReportInput& in) {
   Findings(in, page);
   FlatViews(in, page);
   Segments(in, page);
+  Pieces(in, page);
   Times(in, page);
   page.Heading("About");
   page.Paragraph("ColonMap registers the supine and prone colon walls by quasi-conformal mapping of the flattened "

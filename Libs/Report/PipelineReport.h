@@ -24,6 +24,12 @@ struct PipelineReportInput {
 
 std::string PipelineReportHtml(const PipelineReportInput& in);
 
+// The pieces each scan's colon came in (issue 21), from ColonSupineProne's stage records (the
+// segmentation stages' return parameters) and registration.json: per scan pieces,
+// pieceLengthsMm (from the caecum), gapsBridgedMm, virtualLumenMl and wallNotSeen (segment ->
+// fraction of its wall that is virtual). Null when both colons came in one piece.
+nlohmann::json PiecesSummary(const nlohmann::json& stages, const nlohmann::json& registration);
+
 // A stage's JSON summary, or null when the file is missing or not JSON (that stage did not run).
 nlohmann::json ReadJsonOrNull(const std::string& path);
 

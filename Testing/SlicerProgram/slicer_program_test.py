@@ -7,11 +7,18 @@ return parameters, flags in XML order, numbers and enumerations always passed, b
 when true, empty values left out, index arguments last; file parameters get Slicer-style
 temporary names (a temp folder, digits in node names turned into letters, the extension from
 fileExtensions or Slicer's default). It then checks the exit code, that stderr is empty, the
-progress tags on stdout, the outputs and the return parameter file. A second run is killed with
-SIGKILL once its progress reaches abortAtProgress and must leave no output file.
+progress tags on stdout, the outputs and the return parameter file. Every output file parameter
+the table gives (the nodes Slicer loads back into its scene) must then be readable in the format
+its temporary name's extension names: .vtp/.vtk by VTK (with the point or cell arrays the table's
+"arrays" lists), .mrk.json as a markups file of the pointfile's type with finite control points,
+.nrrd/.nii(.gz) by their headers, .tsv/.csv as a table with rows; a table's "extensions" may ask
+for another extension than the first declared one, as Slicer does for another file type. A second
+run is killed with SIGKILL once its progress reaches abortAtProgress and must leave no output file.
 """
 import argparse
+import gzip
 import json
+import math
 import os
 import re
 import shutil
@@ -54,11 +61,11 @@ def parameters(xml_text):
             yield {"tag": p.tag, "name": get("name"), "flag": get("flag").lstrip("-"),
                    "longflag": get("longflag").lstrip("-"), "index": get("index"),
                    "channel": get("channel"), "default": get("default"),
-                   "fileExtensions": p.get("fileExtensions", ""),
+                   "fileExtensions": p.get("fileExtensions", ""), "type": p.get("type", ""),
                    "coordinateSystem": p.get("coordinateSystem", "")}
 
 
-def build_command(exe, xml_text, values, tempdir, returnfile):
+def build_command(exe, xml_text, values, tempdir, returnfile, extensions=None):
     params = list(parameters(xml_text))
     is_return = lambda p: p["channel"] == "output" and not p["index"] and not p["flag"] and not p["longflag"]
     cmd = [exe]
@@ -77,11 +84,12 @@ def build_command(exe, xml_text, values, tempdir, returnfile):
             return p["default"] if always else ""
         if p["tag"] in FILE_TAGS:
             ext = p["fileExtensions"].split(",")[0] if p["fileExtensions"] else DEFAULT_EXT.get(p["tag"], "")
+            ext = (extensions or {}).get(p["name"], ext)
             temp = os.path.join(tempdir, slicer_node_name(p["tag"], counter) + ext)
             if p["channel"] == "input":
                 shutil.copyfile(v, temp)
             else:
-                renamed[temp] = v
+                renamed[temp] = (v, p)
             return temp
         return v
     for i, p in enumerate(flagged):
@@ -95,6 +103,60 @@ def build_command(exe, xml_text, values, tempdir, returnfile):
     for i, p in enumerate(sorted(indexed, key=lambda p: int(p["index"]))):
         cmd.append(value_of(p, 100 + i))
     return cmd, renamed
+
+
+MARKUPS_TYPE = {"point": "Fiducial", "curve": "Curve", "closedcurve": "ClosedCurve", "line": "Line", "angle": "Angle"}
+
+
+def check_node_file(module, p, path, arrays):
+    """The output file Slicer reads back as a node: readable in the format of its extension."""
+    what = f"{module}: output {p['name']} ({os.path.basename(path)})"
+    lower = path.lower()
+    try:
+        if lower.endswith((".vtp", ".vtk")):
+            from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+            from vtkmodules.vtkIOLegacy import vtkPolyDataReader
+            reader = vtkXMLPolyDataReader() if lower.endswith(".vtp") else vtkPolyDataReader()
+            reader.SetFileName(path)
+            reader.Update()
+            data = reader.GetOutput()
+            check(data.GetNumberOfPoints() > 0 and data.GetNumberOfCells() > 0, f"{what}: VTK reads no points or cells")
+            for a in arrays:
+                check(data.GetPointData().HasArray(a) or data.GetCellData().HasArray(a), f"{what}: no array {a}")
+        elif lower.endswith(".mrk.json"):
+            doc = json.load(open(path))
+            m = doc["markups"][0]
+            want = MARKUPS_TYPE.get(p.get("type", ""), "")
+            check(not want or m.get("type") == want, f"{what}: markups type {m.get('type')}, the XML asks for {want}")
+            check(m.get("coordinateSystem") in ("LPS", "RAS"), f"{what}: coordinateSystem {m.get('coordinateSystem')}")
+            points = m.get("controlPoints", [])
+            check(points and all(len(c["position"]) == 3 and all(math.isfinite(x) for x in c["position"]) for c in points),
+                  f"{what}: no control points, or one not finite")
+            check(all(c.get("label") for c in points), f"{what}: a control point without label")
+        elif lower.endswith(".fcsv"):
+            rows = [l for l in open(path) if l.strip() and not l.startswith("#")]
+            check(rows, f"{what}: no points")
+        elif lower.endswith(".nrrd"):
+            head = open(path, "rb").read(4096)
+            check(head.startswith(b"NRRD000") and b"sizes:" in head and b"space directions:" in head,
+                  f"{what}: not a NRRD header with sizes and space directions")
+        elif lower.endswith((".nii", ".nii.gz")):
+            opener = gzip.open if lower.endswith(".gz") else open
+            with opener(path, "rb") as f:
+                header = f.read(348)
+            check(len(header) == 348 and int.from_bytes(header[:4], "little") == 348
+                  and header[344:348] in (b"n+1\0", b"ni1\0"), f"{what}: not a NIfTI-1 header")
+        elif lower.endswith((".tsv", ".csv", ".txt")):
+            sep = "," if lower.endswith(".csv") else "\t"
+            lines = [l.rstrip("\n") for l in open(path) if l.strip()]
+            check(len(lines) >= 2, f"{what}: a table needs a header and at least one row")
+            if lines:
+                n = len(lines[0].split(sep))
+                check(n >= 2 and all(len(l.split(sep)) == n for l in lines), f"{what}: rows of different lengths")
+        else:
+            check(os.path.getsize(path) > 0, f"{what}: empty")
+    except Exception as e:  # noqa: BLE001 - any failure to read is the finding
+        check(False, f"{what}: cannot be read ({e})")
 
 
 def substitute(table, out):
@@ -125,7 +187,8 @@ def run_module(cli_dir, name, table):
         slicer_tmp = os.path.join(work, "SlicerTemp")
         os.makedirs(slicer_tmp)
         returnfile = os.path.join(slicer_tmp, "BACDE_params.txt")
-        cmd, renamed = build_command(exe, xml_text, substitute(table["quick"], out), slicer_tmp, returnfile)
+        cmd, renamed = build_command(exe, xml_text, substitute(table["quick"], out), slicer_tmp, returnfile,
+                                     table.get("extensions"))
         print("running:", " ".join(cmd))
         started = time.time()
         r = subprocess.run(cmd, capture_output=True, text=True, stdin=subprocess.DEVNULL)
@@ -141,8 +204,9 @@ def run_module(cli_dir, name, table):
                       f"{name}: malformed progress line {line!r}")
         check(not [f for f in os.listdir(out) if f.startswith(".colonmap-tmp")], f"{name}: temporaries left")
         # Slicer reads each output from its temporary name; hand it to the table's path.
-        for temp, final in renamed.items():
+        for temp, (final, p) in renamed.items():
             if check(os.path.isfile(temp), f"{name}: output {temp} missing"):
+                check_node_file(name, p, temp, table.get("arrays", {}).get(p["name"], []))
                 shutil.move(temp, final)
         for f in table.get("outputs", []):
             check(os.path.isfile(os.path.join(out, f)), f"{name}: output {f} missing")

@@ -155,6 +155,20 @@ TEST(OutputTransaction, RollbackRemovesTemporariesAndCreatedFolders) {
   fs::remove_all(dir);
 }
 
+// Errors name the user's paths, never our hidden temporaries, also inside a staged folder (issue 24).
+TEST(OutputTransaction, UserNamesReplaceTemporaries) {
+  const fs::path dir = TempDir("names");
+  OutputTransaction tx;
+  std::vector<std::string> temps;
+  for (int i = 0; i < 12; ++i) temps.push_back(tx.Stage((dir / ("f" + std::to_string(i) + ".nrrd")).string(), "f"));
+  const std::string folder = tx.StageDirectory((dir / "stage").string(), "stage");
+  EXPECT_EQ(tx.UserNames("a '" + temps[1] + "' b '" + temps[11] + "' c"),
+            "a '" + (dir / "f1.nrrd").string() + "' b '" + (dir / "f11.nrrd").string() + "' c");
+  EXPECT_EQ(tx.UserNames("x '" + folder + "/sub/y.vtp'"), "x '" + (dir / "stage").string() + "/sub/y.vtp'");
+  tx.Rollback();
+  fs::remove_all(dir);
+}
+
 TEST(Progress, InProcessStructGetsMonotoneProgressCallbacksAndAbort) {
   ModuleProcessInformation info{};
   struct Log { std::vector<float> values; ModuleProcessInformation* info; } log{{}, &info};

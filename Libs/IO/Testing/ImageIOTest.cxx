@@ -114,3 +114,45 @@ TEST(ImageIO, BadInputsGiveClearErrors) {
   for (const std::string& m : {nan, ErrorOf((dir / "truncated.nrrd").string())}) EXPECT_EQ(m.find('\n'), std::string::npos);
   fs::remove_all(dir);
 }
+
+// Negative spacings in a header are read as positive spacings along flipped axes (as ITK and
+// Slicer do), and the user is told in one note (issue 24); an ordinary file gets no note.
+TEST(ImageIO, NegativeSpacingReadAsFlippedAxisWithOneNote) {
+  const fs::path dir = TempDir("negative");
+  std::ofstream(dir / "neg.nrrd") << "NRRD0004\ntype: short\ndimension: 3\nsizes: 2 2 2\n"
+                                     "spacings: 0.7 -0.8 1.5\nencoding: raw\nendian: little\n\n" << std::string(16, '\0');
+  std::vector<std::string> notes;
+  const Volume<short> v = io::ReadImage<short>((dir / "neg.nrrd").string(), "input CT",
+                                               [&](const std::string& n) { notes.push_back(n); });
+  EXPECT_TRUE(v.spacing.isApprox(Eigen::Vector3d(0.7, 0.8, 1.5), 1e-9));
+  EXPECT_NEAR(v.direction(1, 1), -1.0, 1e-9);
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes[0].find("neg.nrrd': negative voxel spacing on axis 2"), std::string::npos) << notes[0];
+  notes.clear();
+  io::ReadImage<short>(kData + "/example_ct_dicom", "CT", [&](const std::string& n) { notes.push_back(n); });
+  EXPECT_TRUE(notes.empty());
+  fs::remove_all(dir);
+}
+
+// Voxel data shorter than the header says: MetaIO only complained on stderr (issue 24); a DICOM
+// slice cut short: GDCM aborted the process.
+TEST(ImageIO, CutShortMetaImageAndDicomSliceRefused) {
+  const fs::path dir = TempDir("cut");
+  std::ofstream(dir / "cut.mha") << "ObjectType = Image\nNDims = 3\nDimSize = 4 4 4\nElementSpacing = 1 1 1\n"
+                                    "ElementType = MET_SHORT\nElementDataFile = LOCAL\n" << std::string(100, '\0');
+  EXPECT_NE(ErrorOf((dir / "cut.mha").string()).find("cut.mha': is truncated: its voxel data holds 100 of 128 bytes"),
+            std::string::npos);
+  const fs::path series = dir / "series";
+  fs::create_directories(series);
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(kData + "/example_ct_dicom")) files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  for (const auto& f : files) fs::copy_file(f, series / f.filename());
+  const fs::path victim = series / files[5].filename();
+  fs::permissions(victim, fs::perms::owner_write, fs::perm_options::add);
+  fs::resize_file(victim, 2000);
+  const std::string m = ErrorOf(series.string());
+  EXPECT_NE(m.find("'" + series.string() + "': slice file '" + files[5].filename().string() + "' is cut short"),
+            std::string::npos) << m;
+  fs::remove_all(dir);
+}

@@ -137,6 +137,42 @@ TEST(JointFlexures, AFlexureClearInOneScanCarriesOverToTheOther) {
   for (int k : {0, 2, 3}) EXPECT_EQ(c.how[k], "agreed");
 }
 
+TEST(JointFlexures, AFlexureOnBridgedWallIsTheOtherScansCarriedOver) {
+  // The same colon in both scans (identity alignment). The supine splenic flexure lies in a
+  // collapsed stretch bridged by virtual lumen: the smooth bridge cuts the bend, and the rule puts
+  // it at 712 mm (38 mm off, as on tube seed 6 with one collapse); the prone scan saw it at
+  // 750 mm. The two do not agree (30 mm), and seen wall decides: the prone flexure is carried
+  // over. The control without the bridged flag carries the supine one (the tie keeps the first).
+  // A bridged candidate within 30 mm of the seen one is no agreement either; two bridged ones
+  // (a stretch collapsed in both scans) pair as before.
+  Pair p = MakePair();
+  p.b = p.a.rowwise() + Eigen::RowVector3d(0, 0, 5);
+  const CentrelineAlignment m(p.a, p.b);
+  const double L = analysis::ArcLength(p.a)(p.a.rows() - 1);
+  FlexureCandidates a = Candidates({{{{950, 1.0, true}}, {{712, 1.0, true}}, {{480, 1.0, true}}, {{100, 1.0, true}}}});
+  const FlexureCandidates b = Candidates({{{{950, 1.0, true}}, {{750, 1.0, true}}, {{480, 1.0, true}}, {{100, 1.0, true}}}});
+  const JointFlexureChoice control = ChooseFlexuresJointly(a, b, L, L, m, {"supine", "prone"});
+  EXPECT_EQ(control.how[1], "carried from supine");
+  EXPECT_NEAR(control.arc[0][1], 712.0, 1e-9);
+  a.flexure[1][0].bridged = true;
+  const JointFlexureChoice c = ChooseFlexuresJointly(a, b, L, L, m, {"supine", "prone"});
+  ASSERT_TRUE(c.consistent);
+  EXPECT_EQ(c.how[1], "carried from prone");
+  EXPECT_NEAR(c.arc[1][1], 750.0, 1e-9);
+  EXPECT_NEAR(c.arc[0][1], 750.0, 3.0);
+  for (int k : {0, 2, 3}) EXPECT_EQ(c.how[k], "agreed");
+  a.flexure[1][0].arc = 735.0;
+  const JointFlexureChoice near = ChooseFlexuresJointly(a, b, L, L, m, {"supine", "prone"});
+  EXPECT_EQ(near.how[1], "carried from prone");
+  EXPECT_NEAR(near.arc[0][1], 750.0, 3.0);
+  FlexureCandidates bothBridged = b;
+  bothBridged.flexure[1][0].bridged = true;
+  const JointFlexureChoice both = ChooseFlexuresJointly(a, bothBridged, L, L, m, {"supine", "prone"});
+  EXPECT_EQ(both.how[1], "agreed");
+  EXPECT_NEAR(both.arc[0][1], 735.0, 1e-9);
+  EXPECT_NEAR(both.arc[1][1], 750.0, 1e-9);
+}
+
 TEST(JointFlexures, WithoutAnOrderedChoiceTheSegmentsComeFromTheAlignmentAndSaySo) {
   Pair p = MakePair();
   const CentrelineAlignment m(p.a, p.b);

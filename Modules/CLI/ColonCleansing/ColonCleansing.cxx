@@ -24,7 +24,7 @@ void Run(cli::ModuleContext& ctx) {
   ctx.progress.Plan({{"Reading", 1}, {"Cleansing", 6}, {"Writing", 2}});
 
   ctx.progress.StartStage("Reading", "reading the CT");
-  const Volume<short> ct = io::ReadImage<short>(input, "input CT");
+  const Volume<short> ct = io::ReadImage<short>(input, "input CT", ctx.ReaderNotes());
   ctx.progress.EndStage();
 
   ctx.progress.StartStage("Cleansing", "tagged material to air");

@@ -76,9 +76,9 @@ void RunColonEndoluminalViews(cli::ModuleContext& ctx) {
   // The renderer checks the display before the CTs take their time to read.
   EndoluminalRenderer renderer(options);
   ctx.progress.Report(0.2);
-  const Volume<short> supine = io::ReadImage<short>(supinePath, "supine CT");
+  const Volume<short> supine = io::ReadImage<short>(supinePath, "supine CT", ctx.ReaderNotes());
   ctx.progress.Report(0.6);
-  const Volume<short> prone = io::ReadImage<short>(pronePath, "prone CT");
+  const Volume<short> prone = io::ReadImage<short>(pronePath, "prone CT", ctx.ReaderNotes());
   ctx.progress.EndStage();
 
   ctx.progress.StartStage("Link", "carrying the cameras to the prone scan");

@@ -90,13 +90,19 @@ void Run(cli::ModuleContext& ctx) {
     }
   }
   if (present.empty()) throw InputError("landmarks folder", in, "holds none of segment_A.vtp ... segment_R.vtp");
+  // ColonLandmarks always writes all five segments and taeniae.vtp: a folder without one of them
+  // is not its output, and flattening the rest would register a colon with a gap (issue 24).
+  if (!missing.empty())
+    throw InputError("landmarks folder", in, "segment_" + missing[0].get<std::string>() +
+                                                 ".vtp is missing (a ColonLandmarks folder holds all five segments)");
+  if (!fs::is_regular_file(fs::path(in) / "taeniae.vtp"))
+    throw InputError("landmarks folder", in, "taeniae.vtp is missing (ColonLandmarks writes it beside the segments)");
   ctx.outputs.PrepareDirectory(out, "output folder");
   ctx.progress.Plan(plan);
 
   const fs::path taeniaePath = fs::path(in) / "taeniae.vtp";
   std::optional<PolylineSet> taeniae;
-  if (fs::exists(taeniaePath)) taeniae = io::ReadPolylines(taeniaePath.string(), "taeniae");
-  else ctx.progress.Note("ColonFlattening: WARNING: no taeniae.vtp: cutting along shortest paths");
+  taeniae = io::ReadPolylines(taeniaePath.string(), "taeniae");
 
   json report, segments;
   long flippedTotal = 0;
@@ -216,6 +222,9 @@ void Run(cli::ModuleContext& ctx) {
     io::WriteMesh(flat, stage("flat_" + X + ".vtp"), "flat mesh " + X);
     io::WriteMesh(surface3d, stage("surface_" + X + ".vtp"), "cut surface " + X);
     io::WriteImage(image, stage("curvature_" + X + ".nrrd"), "curvature image " + X);
+    // The same image as a volume for the scene (one image parameter per segment), when asked for.
+    if (const std::string node = ctx.args.GetString("curvatureImage" + X); !node.empty())
+      io::WriteImage(image, ctx.outputs.Stage(node, "curvature volume " + X), "curvature volume " + X);
     {
       const std::string p = stage("curvature_" + X + ".png");
       std::ofstream f(p, std::ios::binary);

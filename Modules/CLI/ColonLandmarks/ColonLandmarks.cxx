@@ -31,6 +31,17 @@ void WriteLandmarks(cli::ModuleContext& ctx, const landmarks::LandmarkResult& r,
   io::WriteText(landmarks::SummaryJson(r, ctx.args.GetBool("recordTimes")), file("landmarks.json"), "landmarks.json");
 }
 
+// The first scan's centreline (a curve), flexures (points) and opened colon (with SegmentId) as
+// nodes for the scene, when asked for: the same data as the folder's files.
+void WriteSceneOutputs(cli::ModuleContext& ctx, const landmarks::LandmarkResult& r) {
+  if (const std::string p = ctx.args.GetString("centerlineCurve"); !p.empty())
+    io::WriteMarkups(landmarks::CenterlineMarkups(r), ctx.outputs.Stage(p, "centerline curve"), "centerline curve");
+  if (const std::string p = ctx.args.GetString("flexurePoints"); !p.empty())
+    io::WriteMarkups(landmarks::FlexureMarkups(r), ctx.outputs.Stage(p, "flexure points"), "flexure points");
+  if (const std::string p = ctx.args.GetString("openColonModel"); !p.empty())
+    io::WriteMesh(r.segments.open, ctx.outputs.Stage(p, "opened colon model"), "opened colon model");
+}
+
 std::string ArcList(const landmarks::LandmarkResult& r) {
   std::string arcs;
   for (int k = 0; k < 4; ++k) arcs += (k ? "," : "") + cli::FormatFixed(r.flexures.arc[k], 1);
@@ -109,6 +120,7 @@ void Run(cli::ModuleContext& ctx) {
   ctx.progress.StartStage("Writing", "landmark files");
   WriteLandmarks(ctx, r[0], out);
   if (pair) WriteLandmarks(ctx, r[1], pairedOut);
+  WriteSceneOutputs(ctx, r[0]);
   ctx.progress.EndStage();
 
   ctx.SetReturn("centerlineLength", cli::FormatFixed(r[0].centerline.Length(), 1));

@@ -6,6 +6,7 @@
 #include "IO/ImageIO.h"
 #include "IO/MarkupsIO.h"
 #include "IO/MeshIO.h"
+#include "IO/NodeFiles.h"
 #include "Phantom/Phantom.h"
 #include "RealColon/RealColonPhantom.h"
 
@@ -14,6 +15,7 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <map>
 
 namespace {
 
@@ -202,8 +204,9 @@ void WritePhantom(cli::ModuleContext& ctx, const std::string& out, const std::fu
   ctx.progress.EndStage();
 
   ctx.progress.StartStage("Writing", "writing the phantom files");
+  std::map<std::string, std::string> staged;  // file name -> its temporary, for the scene outputs
   const StagedFile file = [&](const std::string& name) {
-    return ctx.outputs.Stage((fs::path(out) / name).string(), "output " + name);
+    return staged[name] = ctx.outputs.Stage((fs::path(out) / name).string(), "output " + name);
   };
   // Uncompressed: the CT noise makes gzip slow and barely useful, and an uncompressed write
   // keeps Cancel prompt (ITK's writer cannot be interrupted).
@@ -216,6 +219,16 @@ void WritePhantom(cli::ModuleContext& ctx, const std::string& out, const std::fu
     ctx.progress.Report(posture == Posture::Supine ? 0.85 : 0.95);
   }
   io::WriteText(truth(supineCT).dump(2) + "\n", file("truth.json"), "truth.json");
+  // The two CTs and the polyps as nodes for the scene, when asked for: copies of the folder's
+  // files (already written under their temporary names), in the format each name asks for.
+  for (const char* p : {"supine", "prone"}) {
+    const std::string scan(p);
+    if (const std::string node = ctx.args.GetString(scan + "Volume"); !node.empty())
+      io::CopyImageFile<short>(staged.at(scan + ".nrrd"), ctx.outputs.Stage(node, scan + " CT volume"), scan + " CT volume");
+    if (const std::string node = ctx.args.GetString(scan + "Polyps"); !node.empty())
+      io::CopyNodeFile(io::NodeFileKind::Markups, staged.at(scan + "_polyps.mrk.json"), ctx.outputs.Stage(node, scan + " polyps"),
+                       scan + " polyps");
+  }
   ctx.progress.EndStage();
 }
 

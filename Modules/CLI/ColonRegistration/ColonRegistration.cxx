@@ -272,7 +272,7 @@ void Run(cli::ModuleContext& ctx) {
                        {"surfaceRepairedVertices", r.surfaceRepairedVertices}, {"matches", m}};
     }
     if (!r.warp.supineV.empty())
-      j["alignment"] = {{"used", r.warped}, {"smoothSigmaRows", r.warp.smoothSigmaRows}, {"meanShift", r.warp.MeanShift()}, {"maxAlongDeviation", r.warp.MaxAlongDeviation()},
+      j["alignment"] = {{"used", r.warped}, {"shiftOnly", r.warp.shiftOnly}, {"smoothSigmaRows", r.warp.smoothSigmaRows}, {"meanShift", r.warp.MeanShift()}, {"maxAlongDeviation", r.warp.MaxAlongDeviation()},
                         {"pathCorrelation", r.warp.pathCorrelation}, {"affineCorrelation", r.warp.affineCorrelation},
                         {"rows", r.warp.rows}};
     j["uncertainty"] = {{"pathCorrelation", U.segment.pathCorrelation}, {"droppedFraction", U.segment.droppedFraction},
@@ -388,6 +388,11 @@ void Run(cli::ModuleContext& ctx) {
                 "registration", proneCopy);
   io::WriteMesh(prone, ctx.outputs.Stage((fs::path(out) / "registration_prone.vtp").string(), "output registration_prone.vtp"),
                 "prone registration mesh");
+  // The same two surfaces for the scene (Slicer's model nodes), when asked for.
+  if (const std::string m = ctx.args.GetString("registrationModel"); !m.empty())
+    io::WriteMesh(supine, ctx.outputs.Stage(m, "registration model"), "registration model", proneCopy);
+  if (const std::string m = ctx.args.GetString("proneModel"); !m.empty())
+    io::WriteMesh(prone, ctx.outputs.Stage(m, "prone surface model"), "prone surface model");
   const Eigen::VectorXd K = supine.cellData.at("Dilatation").values.col(0);
   json report;
   report["segments"] = segments;

@@ -34,7 +34,7 @@ void Run(cli::ModuleContext& ctx) {
   ctx.progress.Plan({{"Reading", 2}, {"Segmentation", 10}, {"Writing", 1}});
 
   ctx.progress.StartStage("Reading", "reading the CT");
-  const Volume<short> ct = io::ReadImage<short>(input, "input CT");
+  const Volume<short> ct = io::ReadImage<short>(input, "input CT", ctx.ReaderNotes());
   ctx.progress.EndStage();
 
   ctx.progress.StartStage("Segmentation", "air components, colon selection, topology-preserving growth");

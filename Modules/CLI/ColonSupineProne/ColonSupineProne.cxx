@@ -7,6 +7,7 @@
 #include "CLI/ModuleRunner.h"
 #include "Core/Error.h"
 #include "IO/MarkupsIO.h"
+#include "IO/NodeFiles.h"
 #include "Report/PipelineReport.h"
 #include "Report/QualityFlags.h"
 
@@ -15,6 +16,7 @@
 #include <chrono>
 #include <filesystem>
 #include <regex>
+#include <tuple>
 
 COLONMAP_DECLARE_MODULE(ColonCleansing)
 COLONMAP_DECLARE_MODULE(ColonSegmentation)
@@ -67,7 +69,13 @@ class Pipeline {
                                          const std::vector<std::string>& args) {
     ctx_.progress.StartStage(stage);
     const auto start = std::chrono::steady_clock::now();
-    auto results = cli::RunNestedModule(ctx_, m.name, m.xml, m.body, args);
+    std::map<std::string, std::string> results;
+    try {
+      results = cli::RunNestedModule(ctx_, m.name, m.xml, m.body, args);
+    } catch (const Error& e) {
+      // Stage folders are hidden temporaries until the end: the message names the final folders.
+      throw Error(ctx_.outputs.UserNames(e.what()));
+    }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     ctx_.progress.EndStage();
     json r = json::object();
@@ -122,6 +130,43 @@ json FindingsTable(const MarkupList& supine, const MarkupList& prone, const Mark
     rows.push_back(row);
   }
   return rows;
+}
+
+// Scene outputs (Slicer's model nodes), when asked for: the registration folder's two surfaces.
+void WriteModelNodes(cli::ModuleContext& ctx, const std::string& registrationFolder) {
+  for (const auto& [param, file, what] :
+       {std::tuple<const char*, const char*, const char*>{"registrationModel", "registration.vtp", "registration model"},
+        {"proneModel", "registration_prone.vtp", "prone surface model"}})
+    if (const std::string node = ctx.args.GetString(param); !node.empty())
+      io::CopyNodeFile(io::NodeFileKind::Model, (fs::path(registrationFolder) / file).string(), ctx.outputs.Stage(node, what),
+                       what);
+}
+
+// Scene outputs for the findings, when asked for: the transferred findings (the markups file
+// ColonTransferPoints wrote: label, uncertaintyMm and reliable in each description) and the
+// findings table of summary.json as a table node (.tsv or .csv, as the file name says).
+void WriteFindingsNodes(cli::ModuleContext& ctx, const std::string& mapped, const json& rows) {
+  if (const std::string node = ctx.args.GetString("findingsProne"); !node.empty())
+    io::CopyNodeFile(io::NodeFileKind::Markups, mapped, ctx.outputs.Stage(node, "findings in the prone scan"),
+                     "findings in the prone scan");
+  const std::string tablePath = ctx.args.GetString("findingsTable");
+  if (tablePath.empty()) return;
+  io::TextTable t;
+  t.columns = {"label", "supine_L", "supine_P", "supine_S", "prone_L", "prone_P", "prone_S", "segment",
+               "uncertainty_mm", "reliable", "visible", "true_error_mm"};
+  const auto number = [](const json& v) { return v.is_number() ? cli::FormatFixed(v.get<double>(), 2) : std::string(); };
+  for (const json& r : rows) {
+    std::vector<std::string> row{r.value("label", "")};
+    for (const char* scan : {"supine", "prone"})
+      for (int k = 0; k < 3; ++k) row.push_back(number(r[scan][k]));
+    row.push_back(r.value("segment", ""));
+    row.push_back(number(r.value("uncertaintyMm", json())));
+    row.push_back(r.contains("reliable") ? (r["reliable"].get<bool>() ? "true" : "false") : "");
+    row.push_back(r.value("visible", true) ? "true" : "false");
+    row.push_back(number(r.value("trueErrorMm", json())));
+    t.rows.push_back(row);
+  }
+  io::WriteTable(t, ctx.outputs.Stage(tablePath, "findings table"), "findings table");
 }
 
 std::vector<std::pair<std::string, double>> Plan(const Options& o) {
@@ -196,6 +241,9 @@ void WriteSummaryAndReport(cli::ModuleContext& ctx, const Options& o, const json
                 {"warnings", warnings},
                 {"notes", notes},
                 {"findings", findingsTable}};
+  // Only for a collapsed colon: a colon in one piece keeps its summary.json.
+  if (const json pieces = report::PiecesSummary(stages, in.stages.registration); !pieces.is_null())
+    in.summary["pieces"] = pieces;
   in.folders = folders;
   io::WriteText(in.summary.dump(2) + "\n", ctx.outputs.Stage((fs::path(o.out) / "summary.json").string(), "summary.json"),
                 "summary.json");
@@ -244,6 +292,7 @@ void RunReportOnly(cli::ModuleContext& ctx, const Options& o, const std::string&
     const MarkupList truth = o.truth.empty() || !fs::exists(t) ? MarkupList{} : io::ReadMarkups(t.string(), "true prone polyps");
     findingsTable = FindingsTable(io::ReadMarkups(o.findings, "findings"), io::ReadMarkups(mapped.string(), "mapped findings"),
                                   truth.points.empty() ? nullptr : &truth);
+    WriteFindingsNodes(ctx, mapped.string(), findingsTable);
     bool said = false;
     for (const auto& n : notes) said = said || (n.is_string() && n.get<std::string>().rfind("No endoluminal views", 0) == 0);
     if (o.labelMaps && !said)
@@ -259,6 +308,7 @@ void RunReportOnly(cli::ModuleContext& ctx, const Options& o, const std::string&
       throw InputError("output folder", o.out, "has no evaluation/errors.json for the ground truth (run ColonEvaluateRegistration)");
     ctx.SetReturn("meanError", cli::FormatNumber(mean.get<double>()));
   }
+  WriteModelNodes(ctx, (out / "registration").string());
   ctx.progress.Plan({{"report", 0.2}});
   ctx.progress.StartStage("report");
   WriteSummaryAndReport(ctx, o, stages, totalSeconds, folders, notes, findingsTable);
@@ -277,6 +327,9 @@ void Run(cli::ModuleContext& ctx) {
   o.targetFaces = std::to_string(ctx.args.GetInt("targetFaces"));
   o.labelValue = std::to_string(ctx.args.GetInt("labelValue"));
   if (o.out.empty()) throw Error("output folder: no folder given (--outputDirectory)");
+  for (const char* node : {"findingsProne", "findingsTable"})
+    if (o.findings.empty() && !ctx.args.GetString(node).empty())
+      throw Error(std::string("parameter --") + node + ": needs findings (--findings) to transfer");
   if (ctx.args.GetBool("reportOnly")) {
     CheckInputs(o, /*scansMustExist=*/false);  // the scans are only named in summary.json, not read
     return RunReportOnly(ctx, o, ctx.args.GetString("stageRecords"));
@@ -322,6 +375,7 @@ void Run(cli::ModuleContext& ctx) {
         {p.In("flattening", "supine"), p.In("flattening", "prone"), p.Folder("registration"), "--method", o.method});
   for (const char* file : {"registration.vtp", "registration_prone.vtp"})
     fs::copy_file(p.In("registration", file), ctx.outputs.Stage((fs::path(o.out) / file).string(), file));
+  WriteModelNodes(ctx, p.Folder("registration"));
 
   if (o.views)
     p.Run("flat views", COLONMAP_STAGE(ColonFlatViews),
@@ -336,6 +390,7 @@ void Run(cli::ModuleContext& ctx) {
                                  : io::ReadMarkups((fs::path(o.truth) / "prone_polyps.mrk.json").string(), "true prone polyps");
     findingsTable = FindingsTable(io::ReadMarkups(o.findings, "findings"), io::ReadMarkups(mapped, "mapped findings"),
                                   truth.points.empty() ? nullptr : &truth);
+    WriteFindingsNodes(ctx, mapped, findingsTable);
     if (o.views && !o.labelMaps) {
       // Rendering needs an X display; without one the rest of the run still stands.
       try {

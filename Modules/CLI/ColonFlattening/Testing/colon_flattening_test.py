@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """ColonFlattening as a user runs it: outputs, flattening.json contents, determinism, options,
-missing segments and errors (missing folder, folder without segments, a segment that is not a
+errors (missing folder, a missing segment or taeniae.vtp, folder without segments, a segment that is not a
 cylinder).
 
 Usage: colon_flattening_test.py <ColonFlattening> <ColonFlatteningMakeTestData> <fixture folder>
@@ -120,25 +120,21 @@ try:
     check(r.returncode != 0 and "subdivisions" in r.stderr and not os.path.exists(os.path.join(work, "sub4")),
           f"--subdivisions 4: {r.returncode} {r.stderr!r}")
 
-    # A missing segment is skipped and reported.
+    # A missing segment or a missing taeniae.vtp: not a ColonLandmarks folder, refused (issue 24).
     partial = os.path.join(work, "partial-in")
     shutil.copytree(os.path.join(fixture, "supine"), partial)
     os.remove(os.path.join(partial, "segment_R.vtp"))
     out = os.path.join(work, "partial")
     r = run(partial, out)
-    check(r.returncode == 0 and "missing segments skipped: R" in r.stdout, f"missing segment: {r.returncode} {r.stdout[-300:]}")
-    rep = json.load(open(os.path.join(out, "flattening.json")))
-    check(rep["missingSegments"] == ["R"] and "R" not in rep["segments"] and not os.path.exists(os.path.join(out, "flat_R.vtp")),
-          "segment R should be reported missing")
-
-    # Without taeniae.vtp: shortest-path cuts, with a warning; still valid maps.
-    os.remove(os.path.join(partial, "taeniae.vtp"))
+    check(r.returncode == 1 and "segment_R.vtp is missing" in r.stderr and partial in r.stderr
+          and len(r.stderr.strip().splitlines()) == 1 and not os.path.exists(out), f"missing segment: {r.returncode} {r.stderr!r}")
+    notaeniae = os.path.join(work, "notaeniae-in")
+    shutil.copytree(os.path.join(fixture, "supine"), notaeniae)
+    os.remove(os.path.join(notaeniae, "taeniae.vtp"))
     out = os.path.join(work, "notaeniae")
-    r = run(partial, out)
-    check(r.returncode == 0 and "WARNING: no taeniae.vtp" in r.stdout, f"no taeniae: {r.stderr}")
-    rep = json.load(open(os.path.join(out, "flattening.json")))
-    check(all(s["cut"] == "shortest-path" and s["flippedTriangles"] == 0 for s in rep["segments"].values()),
-          "shortest-path cuts")
+    r = run(notaeniae, out)
+    check(r.returncode == 1 and "taeniae.vtp is missing" in r.stderr and notaeniae in r.stderr
+          and not os.path.exists(out), f"no taeniae: {r.returncode} {r.stderr!r}")
 
     # Errors: one stderr line naming the input, non-zero exit, no output folder left.
     holed = os.path.join(work, "holed")

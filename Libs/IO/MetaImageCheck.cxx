@@ -1,0 +1,79 @@
+#include "IO/MetaImageCheck.h"
+#include "IO/FileNames.h"
+
+#include "Core/Error.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace colonmap::io {
+namespace {
+
+std::string Trim(const std::string& s) {
+  const std::size_t a = s.find_first_not_of(" \t\r"), b = s.find_last_not_of(" \t\r");
+  return a == std::string::npos ? std::string() : s.substr(a, b - a + 1);
+}
+
+double BytesOf(const std::string& type) {
+  static const std::map<std::string, double> kBytes = {
+      {"met_char", 1}, {"met_uchar", 1}, {"met_short", 2}, {"met_ushort", 2}, {"met_int", 4},
+      {"met_uint", 4}, {"met_long", 4}, {"met_ulong", 4}, {"met_long_long", 8}, {"met_ulong_long", 8},
+      {"met_float", 4}, {"met_double", 8}};
+  const auto it = kBytes.find(type);
+  return it == kBytes.end() ? 0.0 : it->second;
+}
+
+}  // namespace
+
+void CheckMetaImageFile(const std::string& path, const std::string& what) {
+  const std::string lower = LowerCase(path);
+  if (lower.size() < 4 || (lower.compare(lower.size() - 4, 4, ".mha") != 0 && lower.compare(lower.size() - 4, 4, ".mhd") != 0))
+    return;
+  std::ifstream in(path, std::ios::binary);
+  std::map<std::string, std::string> header;
+  std::string line, dataFile;
+  for (int n = 0; n < 200 && std::getline(in, line); ++n) {
+    const std::size_t eq = line.find('=');
+    if (eq == std::string::npos) continue;
+    const std::string key = LowerCase(Trim(line.substr(0, eq))), value = Trim(line.substr(eq + 1));
+    header[key] = value;
+    if (key == "elementdatafile") {  // the last header field: the voxels follow (LOCAL) or are elsewhere
+      dataFile = value;
+      break;
+    }
+  }
+  if (dataFile.empty() || LowerCase(header["compresseddata"]) == "true") return;  // zlib checks compressed data
+  std::istringstream dims(header["dimsize"]);
+  double voxels = 1.0, d;
+  int count = 0;
+  while (dims >> d) voxels *= d, ++count;
+  const double bytesPerValue = BytesOf(LowerCase(header["elementtype"]));
+  if (count == 0 || bytesPerValue == 0.0) return;  // ITK reports these itself
+  const double channels = header.count("elementnumberofchannels") ? std::max(1.0, std::atof(header["elementnumberofchannels"].c_str())) : 1.0;
+  const double needed = voxels * bytesPerValue * channels;
+  double have = 0.0;
+  std::string where = "its voxel data";
+  std::error_code ec;
+  if (LowerCase(dataFile) == "local") {
+    const std::streamoff start = in.tellg();
+    have = static_cast<double>(fs::file_size(path, ec)) - static_cast<double>(start);
+  } else {
+    if (dataFile.find(' ') != std::string::npos || LowerCase(dataFile) == "list") return;  // a file pattern or list
+    const fs::path data = fs::path(path).parent_path() / dataFile;
+    if (!fs::exists(data, ec)) throw InputError(what, path, "its voxel data file '" + dataFile + "' does not exist");
+    have = static_cast<double>(fs::file_size(data, ec));
+    where = "its voxel data file '" + dataFile + "'";
+  }
+  if (!ec && have < needed)
+    throw InputError(what, path, "is truncated: " + where + " holds " + std::to_string(static_cast<long long>(have)) +
+                                     " of " + std::to_string(static_cast<long long>(needed)) + " bytes");
+}
+
+}  // namespace colonmap::io

@@ -1,0 +1,13 @@
+#pragma once
+// What ITK's MetaImage reader lets through (issue 24), checked on the header before the file is
+// read: voxel data shorter than DimSize x ElementType says (MetaIO prints two lines on stderr and
+// ITK returns a partial image). Only .mha and .mhd with LOCAL or single-file uncompressed data;
+// other paths return at once.
+#include <string>
+
+namespace colonmap::io {
+
+// Throws colonmap::InputError (naming `what` and `path`) when the voxel data is cut short.
+void CheckMetaImageFile(const std::string& path, const std::string& what);
+
+}  // namespace colonmap::io
