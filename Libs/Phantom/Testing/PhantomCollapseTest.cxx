@@ -37,7 +37,9 @@ TEST(PhantomCollapse, StretchesAreDrawnWhereTheIssueSaysAndNothingElseMoves) {
       EXPECT_LE(c.s1, a.length - 60.0);
       EXPECT_TRUE(c.supine || c.prone);
       EXPECT_EQ(c.segment, a.SegmentOf(0.5 * (c.s0 + c.s1)));
-      if (k > 0) EXPECT_GT(c.s0, a.collapses[k - 1].s1 + 60.0);
+      if (k > 0) {
+        EXPECT_GT(c.s0, a.collapses[k - 1].s1 + 60.0);
+      }
       ++perScan[c.supine && c.prone ? 2 : (c.supine ? 0 : 1)];
     }
     // The collapses have a stream of their own: the anatomy is otherwise the same.
