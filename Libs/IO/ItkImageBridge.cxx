@@ -17,8 +17,6 @@
 #include <gdcmTrace.h>
 
 #include <algorithm>
-#include <cctype>
-#include <cstring>
 #include <sstream>
 #include <cstdio>
 #include <filesystem>
@@ -103,52 +101,22 @@ typename ItkImage<T>::Pointer ReadDicomSeries(const std::string& folder, const s
 
 // ITK's NRRD reader takes a NaN spacing, direction or origin as "unknown" and silently uses 1 mm
 // or identity; a radiologist's measurement would then be wrong without a word. Scan the text
-// header for NaN in those fields before reading.
-void CheckNrrdHeader(const std::string& path, const std::string& what) {
-  std::string lower = path;
-  for (auto& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (lower.size() < 5 || (lower.compare(lower.size() - 5, 5, ".nrrd") != 0 &&
-                           lower.compare(lower.size() - 5, 5, ".nhdr") != 0))
-    return;
+// header for NaN in those fields before reading. Returns the axes (1-based) "spacings:" gives a
+// negative spacing: ITK reads them as positive spacings along flipped axes, silently.
+std::vector<int> CheckNrrdHeader(const std::string& path, const std::string& what) {
+  const std::string lower = LowerCase(path);
+  if (!EndsWith(lower, ".nrrd") && !EndsWith(lower, ".nhdr")) return {};
+  std::vector<int> negative;
   std::ifstream in(path, std::ios::binary);
   std::string line;
   for (int n = 0; n < 200 && std::getline(in, line) && !line.empty() && line != "\r"; ++n) {
-    for (auto& c : line) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    line = LowerCase(line);
     for (const char* field : {"spacings:", "space directions:", "space origin:"})
       if (line.rfind(field, 0) == 0 && line.find("nan") != std::string::npos)
         throw InputError(what, path, std::string("header field '") + field + "' holds NaN");
+    if (line.rfind("spacings:", 0) == 0) negative = NegativeAxes(line.substr(9));
   }
-}
-
-bool EndsWith(const std::string& s, const char* tail) {
-  const std::size_t n = std::strlen(tail);
-  return s.size() >= n && s.compare(s.size() - n, n, tail) == 0;
-}
-
-// Axes (1-based) that a NRRD ("spacings:") or MetaImage ("ElementSpacing =") text header gives a
-// negative spacing. ITK reads them as positive spacings along flipped axes, silently (issue 24).
-std::vector<int> HeaderNegativeSpacingAxes(const std::string& path) {
-  const std::string lower = LowerCase(path);
-  const bool nrrd = EndsWith(lower, ".nrrd") || EndsWith(lower, ".nhdr");
-  const bool meta = EndsWith(lower, ".mha") || EndsWith(lower, ".mhd");
-  std::vector<int> axes;
-  if (!nrrd && !meta) return axes;
-  std::ifstream in(path, std::ios::binary);
-  std::string line;
-  for (int n = 0; n < 200 && std::getline(in, line) && !(nrrd && (line.empty() || line == "\r")); ++n) {
-    const std::string l = LowerCase(line);
-    std::size_t at = std::string::npos;
-    if (nrrd && l.rfind("spacings:", 0) == 0) at = 9;
-    if (meta && l.rfind("elementspacing", 0) == 0) at = l.find('=') == std::string::npos ? std::string::npos : l.find('=') + 1;
-    if (meta && l.rfind("elementdatafile", 0) == 0) break;  // the voxels follow
-    if (at == std::string::npos) continue;
-    std::istringstream values(l.substr(at));
-    double v;
-    for (int axis = 1; values >> v; ++axis)
-      if (v < 0.0) axes.push_back(axis);
-    break;
-  }
-  return axes;
+  return negative;
 }
 
 // The one note on how the file's axes were read: axes stored with a negative spacing (read as
@@ -182,11 +150,12 @@ void ItkReadImage(const std::string& path, const std::string& what, ImageGeometr
   itk::Object::GlobalWarningDisplayOff();
   std::error_code ec;
   if (!IsHostPath(path) && !fs::exists(path, ec)) throw InputError(what, path, "file does not exist");
-  if (!IsHostPath(path)) CheckNrrdHeader(path, what);
-  if (!IsHostPath(path)) CheckMetaImageFile(path, what);
+  // Each format's own header check; each returns the axes stored with a negative spacing.
   std::vector<int> negativeAxes;
-  if (!IsHostPath(path)) negativeAxes = CheckNiftiFile(path, what);
-  if (!IsHostPath(path) && negativeAxes.empty()) negativeAxes = HeaderNegativeSpacingAxes(path);
+  if (!IsHostPath(path)) {
+    for (const std::vector<int>& axes : {CheckNrrdHeader(path, what), CheckMetaImageFile(path, what), CheckNiftiFile(path, what)})
+      if (!axes.empty()) negativeAxes = axes;
+  }
   typename ItkImage<T>::Pointer image;
   try {
     if (!IsHostPath(path) && fs::is_directory(path, ec)) {

@@ -17,10 +17,6 @@ using nlohmann::json;
 namespace colonmap::io {
 namespace {
 
-bool EndsWith(const std::string& s, const std::string& e) {
-  return s.size() >= e.size() && s.compare(s.size() - e.size(), e.size(), e) == 0;
-}
-
 std::string ReadWholeFile(const std::string& path, const std::string& what) {
   std::error_code ec;
   if (path.empty()) throw Error(what + ": no file given");

@@ -32,10 +32,9 @@ double BytesOf(const std::string& type) {
 
 }  // namespace
 
-void CheckMetaImageFile(const std::string& path, const std::string& what) {
+std::vector<int> CheckMetaImageFile(const std::string& path, const std::string& what) {
   const std::string lower = LowerCase(path);
-  if (lower.size() < 4 || (lower.compare(lower.size() - 4, 4, ".mha") != 0 && lower.compare(lower.size() - 4, 4, ".mhd") != 0))
-    return;
+  if (!EndsWith(lower, ".mha") && !EndsWith(lower, ".mhd")) return {};
   std::ifstream in(path, std::ios::binary);
   std::map<std::string, std::string> header;
   std::string line, dataFile;
@@ -49,13 +48,14 @@ void CheckMetaImageFile(const std::string& path, const std::string& what) {
       break;
     }
   }
-  if (dataFile.empty() || LowerCase(header["compresseddata"]) == "true") return;  // zlib checks compressed data
+  const std::vector<int> negative = NegativeAxes(header["elementspacing"]);
+  if (dataFile.empty() || LowerCase(header["compresseddata"]) == "true") return negative;  // zlib checks compressed data
   std::istringstream dims(header["dimsize"]);
   double voxels = 1.0, d;
   int count = 0;
   while (dims >> d) voxels *= d, ++count;
   const double bytesPerValue = BytesOf(LowerCase(header["elementtype"]));
-  if (count == 0 || bytesPerValue == 0.0) return;  // ITK reports these itself
+  if (count == 0 || bytesPerValue == 0.0) return negative;  // ITK reports these itself
   const double channels = header.count("elementnumberofchannels") ? std::max(1.0, std::atof(header["elementnumberofchannels"].c_str())) : 1.0;
   const double needed = voxels * bytesPerValue * channels;
   double have = 0.0;
@@ -65,7 +65,7 @@ void CheckMetaImageFile(const std::string& path, const std::string& what) {
     const std::streamoff start = in.tellg();
     have = static_cast<double>(fs::file_size(path, ec)) - static_cast<double>(start);
   } else {
-    if (dataFile.find(' ') != std::string::npos || LowerCase(dataFile) == "list") return;  // a file pattern or list
+    if (dataFile.find(' ') != std::string::npos || LowerCase(dataFile) == "list") return negative;  // a file pattern or list
     const fs::path data = fs::path(path).parent_path() / dataFile;
     if (!fs::exists(data, ec)) throw InputError(what, path, "its voxel data file '" + dataFile + "' does not exist");
     have = static_cast<double>(fs::file_size(data, ec));
@@ -74,6 +74,7 @@ void CheckMetaImageFile(const std::string& path, const std::string& what) {
   if (!ec && have < needed)
     throw InputError(what, path, "is truncated: " + where + " holds " + std::to_string(static_cast<long long>(have)) +
                                      " of " + std::to_string(static_cast<long long>(needed)) + " bytes");
+  return negative;
 }
 
 }  // namespace colonmap::io

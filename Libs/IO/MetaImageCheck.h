@@ -4,10 +4,13 @@
 // ITK returns a partial image). Only .mha and .mhd with LOCAL or single-file uncompressed data;
 // other paths return at once.
 #include <string>
+#include <vector>
 
 namespace colonmap::io {
 
 // Throws colonmap::InputError (naming `what` and `path`) when the voxel data is cut short.
-void CheckMetaImageFile(const std::string& path, const std::string& what);
+// Returns the axes (1-based) ElementSpacing gives a negative spacing (ITK reads them as positive
+// spacings along flipped axes, silently); empty for other paths.
+std::vector<int> CheckMetaImageFile(const std::string& path, const std::string& what);
 
 }  // namespace colonmap::io

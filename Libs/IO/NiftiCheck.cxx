@@ -1,4 +1,5 @@
 #include "IO/NiftiCheck.h"
+#include "IO/FileNames.h"
 
 #include "Core/Error.h"
 
@@ -15,10 +16,6 @@
 namespace colonmap::io {
 
 namespace {
-
-bool EndsWith(const std::string& s, const std::string& tail) {
-  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
-}
 
 template <typename T>
 T Field(const unsigned char* header, std::size_t offset, bool swap) {
@@ -44,8 +41,7 @@ struct Stream {
 }  // namespace
 
 std::vector<int> CheckNiftiFile(const std::string& path, const std::string& what) {
-  std::string lower = path;
-  for (auto& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string lower = LowerCase(path);
   if (!EndsWith(lower, ".nii") && !EndsWith(lower, ".nii.gz")) return {};
   Stream in(path);
   if (!in.file) throw InputError(what, path, "cannot be opened");

@@ -22,6 +22,9 @@ import subprocess
 import sys
 import xml.etree.ElementTree as ET
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "Python"))
+from colonmap_testing import Checks  # noqa: E402
+
 TESTING = {"ColonPhantom", "ColonEvaluateRegistration"}
 MAX_DESCRIPTION = 300
 # Flagged parameters a module cannot run without (positional ones are always required).
@@ -46,14 +49,8 @@ INTERNAL = [re.compile(r"\bDESIGN\b"), re.compile("§"), re.compile(r"\bissues?\
 UNIT_WORDS = re.compile(r"(?<![\w/])(mm|degrees?|ml|HU|seconds)(?![\w/])")
 NUMBERS = {"integer", "float", "double", "integer-vector", "float-vector", "double-vector"}
 PARAMETER_FIELDS = {"label", "description"}
-failures = []
-
-
-def check(ok, message):
-    if not ok:
-        failures.append(message)
-        print("FAIL: " + message)
-    return ok
+checks = Checks()
+check = checks.check
 
 
 def text(element, tag):
@@ -121,8 +118,8 @@ def main():
     args = parser.parse_args()
     for name in args.modules:
         check_module(args.cli_dir, args.root, name)
-    print(f"{len(args.modules)} modules checked, {len(failures)} failures")
-    return 1 if failures else 0
+    print(f"{len(args.modules)} modules checked")
+    return checks.finish()
 
 
 if __name__ == "__main__":
