@@ -8,6 +8,8 @@
 #include <vtkXMLUtilities.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cmath>
 #include <cstdlib>
 #include <set>
 
@@ -37,10 +39,21 @@ std::string StripDashes(std::string s) {
   return s;
 }
 
+// The whole text is a finite number ("nan" or "1e999" as a minimum would switch the check off).
 bool ParseNumber(const std::string& text, double& value) {
   char* end = nullptr;
   value = std::strtod(text.c_str(), &end);
-  return !text.empty() && end && *end == '\0';
+  return !text.empty() && end && *end == '\0' && std::isfinite(value);
+}
+
+// An <index>: a non-negative integer, the whole text (atoi took "-5" as "no index", "x" as 0).
+int ParseIndex(const std::string& text, const std::string& tag) {
+  char* end = nullptr;
+  errno = 0;
+  const long v = std::strtol(text.c_str(), &end, 10);
+  if (text.empty() || !end || *end != '\0' || errno != 0 || v < 0 || v > 100000)
+    throw Error("module description: a <" + tag + "> parameter has <index> '" + text + "', not a non-negative integer");
+  return static_cast<int>(v);
 }
 
 ParameterDescription ParseParameter(vtkXMLDataElement* e) {
@@ -59,7 +72,7 @@ ParameterDescription ParseParameter(vtkXMLDataElement* e) {
     else if (n == "description") p.description = text;
     else if (n == "flag") p.flag = StripDashes(text);
     else if (n == "longflag") p.longflag = StripDashes(text);
-    else if (n == "index") p.index = std::atoi(text.c_str());
+    else if (n == "index") p.index = ParseIndex(text, p.tag);
     else if (n == "channel") p.channel = text;
     else if (n == "default") { p.defaultValue = text; p.hasDefault = true; }
     else if (n == "element") p.elements.push_back(text);
@@ -67,8 +80,11 @@ ParameterDescription ParseParameter(vtkXMLDataElement* e) {
       for (int k = 0; k < c->GetNumberOfNestedElements(); ++k) {
         vtkXMLDataElement* b = c->GetNestedElement(k);
         const std::string bn = b->GetName();
+        if (bn != "minimum" && bn != "maximum") continue;
         double v = 0.0;
-        if (!ParseNumber(Trim(b->GetCharacterData()), v)) continue;
+        const std::string number = Trim(b->GetCharacterData());
+        if (!ParseNumber(number, v))
+          throw Error("module description: a <" + p.tag + "> parameter has <" + bn + "> '" + number + "', not a finite number");
         if (bn == "minimum") { p.minimum = v; p.hasMinimum = true; }
         if (bn == "maximum") { p.maximum = v; p.hasMaximum = true; }
       }

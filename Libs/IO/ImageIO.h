@@ -4,6 +4,7 @@
 // Formats: NRRD (default), NIfTI, MetaImage, and a folder holding a DICOM series (GDCM).
 // Origin, spacing and direction are honoured. `what` names the input in error messages.
 #include "Core/Volume.h"
+#include "IO/ImageCheck.h"
 
 #include <functional>
 #include <string>
@@ -11,7 +12,9 @@
 namespace colonmap::io {
 
 // Throws colonmap::Error ("<what> '<path>': <problem>") for a missing file, an unknown format,
-// a folder without DICOM, a truncated or corrupt file, or non-finite / non-positive spacing.
+// a folder without DICOM, a truncated or corrupt file, more than three axes, or non-finite /
+// non-positive spacing. CheckImageFile (IO/ImageCheck.h) finds the same problems, in the same
+// words, short of those only the voxels show, without reading them.
 // `note` hears what the user should know about how the file was read (one line each, for stdout):
 // axes stored with a negative spacing or a left-handed frame, read as flipped axes.
 using NoteSink = std::function<void(const std::string&)>;

@@ -1,8 +1,10 @@
 #include "IO/ItkImageBridge.h"
+#include "IO/ImageCheck.h"
 #include "IO/FileNames.h"
 #include "IO/DicomCheck.h"
 #include "IO/MetaImageCheck.h"
 #include "IO/NiftiCheck.h"
+#include "IO/NrrdCheck.h"
 
 #include "Core/Error.h"
 
@@ -17,6 +19,7 @@
 #include <gdcmTrace.h>
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 #include <cstdio>
 #include <filesystem>
@@ -50,8 +53,37 @@ std::string Millimetres(double v) {
   return b;
 }
 
-template <typename T>
-typename ItkImage<T>::Pointer ReadDicomSeries(const std::string& folder, const std::string& what) {
+// Of a row-major 3 x 3 matrix.
+double Determinant(const double* m) {
+  return m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) + m[2] * (m[3] * m[7] - m[4] * m[6]);
+}
+
+// ITK's exception in our words, the same for a header read and a full read.
+Error ReadError(const std::string& path, const std::string& what, const itk::ExceptionObject& e) {
+  const std::string m = OneLine(e);
+  if (m.find("Could not create IO object") != std::string::npos)
+    return InputError(what, path, "unknown or unsupported image format");
+  return InputError(what, path, "cannot be read (" + m + ")");
+}
+
+// What is checked before ITK opens the path: that it is there, and each format's own header
+// check. Returns the axes stored with a negative spacing.
+std::vector<int> DoorChecks(const std::string& path, const std::string& what) {
+  if (path.empty()) throw Error(what + ": no file given");
+  // ITK's warnings (several lines on stderr) must not come before our one line (issue 24); what
+  // matters in them is checked here and said in that line.
+  itk::Object::GlobalWarningDisplayOff();
+  if (IsHostPath(path)) return {};
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw InputError(what, path, "file does not exist");
+  std::vector<int> negativeAxes;
+  for (const std::vector<int>& axes : {CheckNrrdHeader(path, what), CheckMetaImageFile(path, what), CheckNiftiFile(path, what)})
+    if (!axes.empty()) negativeAxes = axes;
+  return negativeAxes;
+}
+
+// The files of the series a DICOM folder means, checked before GDCM opens any of them.
+std::vector<std::string> DicomSeriesFiles(const std::string& folder, const std::string& what) {
   // GDCM's own log (10 lines and more on a bad file) must not come before our one line; what
   // matters in it is checked here and said in that line.
   gdcm::Trace::WarningOff();
@@ -83,12 +115,22 @@ typename ItkImage<T>::Pointer ReadDicomSeries(const std::string& folder, const s
     const std::size_t n = names->GetFileNames(uid).size();
     if (n > bestCount) { best = uid; bestCount = n; }
   }
+  return names->GetFileNames(best);
+}
+
+// Without `voxels`, only the headers of the first and last slice are read (size, spacing, frame).
+template <typename T>
+typename ItkImage<T>::Pointer ReadDicomSeries(const std::string& folder, const std::string& what, bool voxels) {
   auto reader = itk::ImageSeriesReader<ItkImage<T>>::New();
   reader->SetImageIO(itk::GDCMImageIO::New());
-  reader->SetFileNames(names->GetFileNames(best));
+  reader->SetFileNames(DicomSeriesFiles(folder, what));
+  if (!voxels) {
+    reader->UpdateOutputInformation();
+    return reader->GetOutput();
+  }
   reader->Update();
   // A missing slice or uneven slice positions: ITK averages the z spacing and only warns (issue
-  // 24); a measurement along z would then be wrong without a word.
+  // 24); a measurement along z would then be wrong without a word. ITK measures it on the voxel read.
   typename ItkImage<T>::Pointer image = reader->GetOutput();
   double deviation = 0.0;
   if (itk::ExposeMetaData<double>(image->GetMetaDataDictionary(), "ITK_non_uniform_sampling_deviation", deviation) &&
@@ -99,24 +141,41 @@ typename ItkImage<T>::Pointer ReadDicomSeries(const std::string& folder, const s
   return image;
 }
 
-// ITK's NRRD reader takes a NaN spacing, direction or origin as "unknown" and silently uses 1 mm
-// or identity; a radiologist's measurement would then be wrong without a word. Scan the text
-// header for NaN in those fields before reading. Returns the axes (1-based) "spacings:" gives a
-// negative spacing: ITK reads them as positive spacings along flipped axes, silently.
-std::vector<int> CheckNrrdHeader(const std::string& path, const std::string& what) {
-  const std::string lower = LowerCase(path);
-  if (!EndsWith(lower, ".nrrd") && !EndsWith(lower, ".nhdr")) return {};
-  std::vector<int> negative;
-  std::ifstream in(path, std::ios::binary);
-  std::string line;
-  for (int n = 0; n < 200 && std::getline(in, line) && !line.empty() && line != "\r"; ++n) {
-    line = LowerCase(line);
-    for (const char* field : {"spacings:", "space directions:", "space origin:"})
-      if (line.rfind(field, 0) == 0 && line.find("nan") != std::string::npos)
-        throw InputError(what, path, std::string("header field '") + field + "' holds NaN");
-    if (line.rfind("spacings:", 0) == 0) negative = NegativeAxes(line.substr(9));
+// ITK reads the first volume of a 4-D file (a time series, several echoes) into a 3-D image
+// without a word.
+void CheckThreeAxes(const std::string& path, const std::string& what, const itk::ImageIOBase& io) {
+  const unsigned n = io.GetNumberOfDimensions();
+  bool extra = false;
+  std::string sizes;
+  for (unsigned d = 0; d < n; ++d) {
+    sizes += (d ? " x " : "") + std::to_string(io.GetDimensions(d));
+    extra = extra || (d >= 3 && io.GetDimensions(d) > 1);
   }
-  return negative;
+  if (extra)
+    throw InputError(what, path, "is a " + std::to_string(n) + "-D image (" + sizes + " voxels), not a 3-D volume");
+}
+
+template <typename T>
+ImageGeometry GeometryOf(const ItkImage<T>& image) {
+  ImageGeometry g;
+  const auto size = image.GetLargestPossibleRegion().GetSize();
+  for (unsigned d = 0; d < 3; ++d) {
+    g.size[d] = size[d];
+    g.spacing[d] = image.GetSpacing()[d];
+    g.origin[d] = image.GetOrigin()[d];
+    for (unsigned e = 0; e < 3; ++e) g.direction[3 * d + e] = image.GetDirection()[d][e];
+  }
+  return g;
+}
+
+// A geometry no stage can work with; known from the header, so the door check finds it too.
+void CheckGeometry(const std::string& path, const std::string& what, const ImageGeometry& g) {
+  const auto finite = [](const double* v, int n) { return std::all_of(v, v + n, [](double x) { return std::isfinite(x); }); };
+  if (g.size[0] * g.size[1] * g.size[2] == 0) throw InputError(what, path, "image has no voxels");
+  for (double s : g.spacing)
+    if (!std::isfinite(s) || s <= 0.0) throw InputError(what, path, "voxel spacing is not a positive finite number");
+  if (!finite(g.origin, 3) || !finite(g.direction, 9) || std::abs(Determinant(g.direction)) < 1e-6)
+    throw InputError(what, path, "image origin or direction is not valid");
 }
 
 // The one note on how the file's axes were read: axes stored with a negative spacing (read as
@@ -129,8 +188,7 @@ void NoteFlippedAxes(const std::string& path, const std::string& what, std::vect
       if (std::find(axes.begin(), axes.end(), int(d) + 1) == axes.end()) axes.push_back(int(d) + 1);
     }
   std::sort(axes.begin(), axes.end());
-  const double* m = g.direction;
-  const double det = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) + m[2] * (m[3] * m[7] - m[4] * m[6]);
+  const double det = Determinant(g.direction);
   std::string list;
   for (int a : axes) list += (list.empty() ? "" : ", ") + std::to_string(a);
   if (!axes.empty())
@@ -140,46 +198,38 @@ void NoteFlippedAxes(const std::string& path, const std::string& what, std::vect
     g.notes.push_back(what + " '" + path + "': its axes form a left-handed frame (one axis stored flipped): read as stored");
 }
 
+// The one read path of the header-only check and the full read, so that a problem is found by
+// the same code and said in the same words by both. Without `voxels`, ITK reads the header only.
+template <typename T>
+typename ItkImage<T>::Pointer ReadItkImage(const std::string& path, const std::string& what, bool voxels, ImageGeometry& g) {
+  const std::vector<int> negativeAxes = DoorChecks(path, what);
+  typename ItkImage<T>::Pointer image;
+  try {
+    std::error_code ec;
+    if (!IsHostPath(path) && fs::is_directory(path, ec)) {
+      image = ReadDicomSeries<T>(path, what, voxels);
+    } else {
+      auto reader = itk::ImageFileReader<ItkImage<T>>::New();
+      reader->SetFileName(path);
+      reader->UpdateOutputInformation();
+      CheckThreeAxes(path, what, *reader->GetImageIO());
+      if (voxels) reader->Update();
+      image = reader->GetOutput();
+    }
+  } catch (const itk::ExceptionObject& e) {
+    throw ReadError(path, what, e);
+  }
+  g = GeometryOf<T>(*image);
+  NoteFlippedAxes(path, what, negativeAxes, g);
+  CheckGeometry(path, what, g);
+  return image;
+}
+
 }  // namespace
 
 template <typename T>
 void ItkReadImage(const std::string& path, const std::string& what, ImageGeometry& g, std::vector<T>& voxels) {
-  if (path.empty()) throw Error(what + ": no file given");
-  // ITK's warnings (several lines on stderr) must not come before our one line (issue 24); what
-  // matters in them is checked here and said in that line.
-  itk::Object::GlobalWarningDisplayOff();
-  std::error_code ec;
-  if (!IsHostPath(path) && !fs::exists(path, ec)) throw InputError(what, path, "file does not exist");
-  // Each format's own header check; each returns the axes stored with a negative spacing.
-  std::vector<int> negativeAxes;
-  if (!IsHostPath(path)) {
-    for (const std::vector<int>& axes : {CheckNrrdHeader(path, what), CheckMetaImageFile(path, what), CheckNiftiFile(path, what)})
-      if (!axes.empty()) negativeAxes = axes;
-  }
-  typename ItkImage<T>::Pointer image;
-  try {
-    if (!IsHostPath(path) && fs::is_directory(path, ec)) {
-      image = ReadDicomSeries<T>(path, what);
-    } else {
-      auto reader = itk::ImageFileReader<ItkImage<T>>::New();
-      reader->SetFileName(path);
-      reader->Update();
-      image = reader->GetOutput();
-    }
-  } catch (const itk::ExceptionObject& e) {
-    const std::string m = OneLine(e);
-    if (m.find("Could not create IO object") != std::string::npos)
-      throw InputError(what, path, "unknown or unsupported image format");
-    throw InputError(what, path, "cannot be read (" + m + ")");
-  }
-  const auto size = image->GetLargestPossibleRegion().GetSize();
-  for (unsigned d = 0; d < 3; ++d) {
-    g.size[d] = size[d];
-    g.spacing[d] = image->GetSpacing()[d];
-    g.origin[d] = image->GetOrigin()[d];
-    for (unsigned e = 0; e < 3; ++e) g.direction[3 * d + e] = image->GetDirection()[d][e];
-  }
-  NoteFlippedAxes(path, what, negativeAxes, g);
+  const auto image = ReadItkImage<T>(path, what, /*voxels=*/true, g);
   const std::size_t n = g.size[0] * g.size[1] * g.size[2];
   voxels.assign(image->GetBufferPointer(), image->GetBufferPointer() + n);
 }
@@ -230,3 +280,14 @@ COLONMAP_INSTANTIATE(float)
 #undef COLONMAP_INSTANTIATE
 
 }  // namespace colonmap::io::detail
+
+namespace colonmap::io {
+
+void CheckImageFile(const std::string& path, const std::string& what) {
+  // In-process, the host's own ImageIO reads the image from its scene: nothing to check here.
+  if (detail::IsHostPath(path)) return;
+  detail::ImageGeometry g;
+  detail::ReadItkImage<short>(path, what, /*voxels=*/false, g);
+}
+
+}  // namespace colonmap::io

@@ -16,7 +16,8 @@ struct ImageGeometry {
   std::vector<std::string> notes;  // what the user should know about how the file was read
 };
 
-// Reads a file (any ITK format) or a folder holding a DICOM series. Throws colonmap::Error.
+// Reads a file (any ITK format) or a folder holding a DICOM series. Throws colonmap::Error: first
+// for what CheckImageFile (IO/ImageCheck.h) finds, the same code, then for what the voxels show.
 template <typename T>
 void ItkReadImage(const std::string& path, const std::string& what, ImageGeometry& geometry,
                   std::vector<T>& voxels);

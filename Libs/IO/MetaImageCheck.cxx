@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -15,11 +16,6 @@ namespace fs = std::filesystem;
 
 namespace colonmap::io {
 namespace {
-
-std::string Trim(const std::string& s) {
-  const std::size_t a = s.find_first_not_of(" \t\r"), b = s.find_last_not_of(" \t\r");
-  return a == std::string::npos ? std::string() : s.substr(a, b - a + 1);
-}
 
 double BytesOf(const std::string& type) {
   static const std::map<std::string, double> kBytes = {
@@ -48,6 +44,18 @@ std::vector<int> CheckMetaImageFile(const std::string& path, const std::string& 
       break;
     }
   }
+  // MetaIO reads "nan" in ElementSpacing as a failed field and says so in 4 lines of its own, then
+  // ITK blames a missing file: refuse it here, in one line.
+  for (const char* key : {"ElementSpacing", "Offset", "Origin", "Position", "TransformMatrix"}) {
+    std::istringstream values(header[LowerCase(key)]);
+    std::string token;
+    while (values >> token) {
+      char* end = nullptr;
+      const double v = std::strtod(token.c_str(), &end);
+      if (end == token.c_str() || *end != '\0' || !std::isfinite(v))
+        throw InputError(what, path, "header field '" + std::string(key) + "' holds '" + token + "', not a finite number");
+    }
+  }
   const std::vector<int> negative = NegativeAxes(header["elementspacing"]);
   if (dataFile.empty() || LowerCase(header["compresseddata"]) == "true") return negative;  // zlib checks compressed data
   std::istringstream dims(header["dimsize"]);
@@ -72,8 +80,7 @@ std::vector<int> CheckMetaImageFile(const std::string& path, const std::string& 
     where = "its voxel data file '" + dataFile + "'";
   }
   if (!ec && have < needed)
-    throw InputError(what, path, "is truncated: " + where + " holds " + std::to_string(static_cast<long long>(have)) +
-                                     " of " + std::to_string(static_cast<long long>(needed)) + " bytes");
+    throw InputError(what, path, "is truncated: " + where + " holds " + ByteCount(have) + " of " + ByteCount(needed) + " bytes");
   return negative;
 }
 

@@ -9,8 +9,8 @@
 namespace colonmap::io {
 
 // Throws colonmap::InputError (naming `what` and `path`) when the voxel data is cut short.
-// Returns the axes (1-based) ElementSpacing gives a negative spacing (ITK reads them as positive
-// spacings along flipped axes, silently); empty for other paths.
+// Returns the axes (1-based, among the first three) ElementSpacing gives a negative spacing (ITK
+// reads them as positive spacings along flipped axes, silently); empty for other paths.
 std::vector<int> CheckMetaImageFile(const std::string& path, const std::string& what);
 
 }  // namespace colonmap::io

@@ -62,8 +62,10 @@ std::vector<int> CheckNiftiFile(const std::string& path, const std::string& what
   }
   bitpix = two ? Field<std::int16_t>(h, 14, swap) : Field<std::int16_t>(h, 72, swap);
   offset = two ? static_cast<double>(Field<std::int64_t>(h, 168, swap)) : Field<float>(h, 108, swap);
+  // dim[0] is checked as read (a NIfTI-2 int64): cast to int only once it is known to be 1..7.
+  if (!(dim[0] >= 1 && dim[0] <= 7))
+    throw InputError(what, path, "NIfTI header has " + std::to_string(static_cast<long long>(dim[0])) + " dimensions");
   const int n = static_cast<int>(dim[0]);
-  if (n < 1 || n > 7) throw InputError(what, path, "NIfTI header has " + std::to_string(n) + " dimensions");
   for (int k = 1; k <= std::min(n, 3); ++k)
     // Negative values are left to ITK (its NIfTI library takes their magnitude).
     if (!std::isfinite(pixdim[k]) || pixdim[k] == 0.0)
@@ -82,8 +84,7 @@ std::vector<int> CheckNiftiFile(const std::string& path, const std::string& what
     std::error_code ec;
     const double fileBytes = static_cast<double>(std::filesystem::file_size(path, ec));
     if (!ec && fileBytes < bytes)
-      throw InputError(what, path, "is truncated: " + std::to_string(static_cast<long long>(fileBytes)) + " of " +
-                                       std::to_string(static_cast<long long>(bytes)) + " bytes");
+      throw InputError(what, path, "is truncated: " + ByteCount(fileBytes) + " of " + ByteCount(bytes) + " bytes");
     return negative;
   }
   // A .nii.gz: read the stream through; it ends early, or with an error, when it is cut.
@@ -100,8 +101,7 @@ std::vector<int> CheckNiftiFile(const std::string& path, const std::string& what
     if (total >= bytes) break;
   }
   if (total < bytes)
-    throw InputError(what, path, "is truncated: " + std::to_string(static_cast<long long>(total)) + " of " +
-                                     std::to_string(static_cast<long long>(bytes)) + " bytes");
+    throw InputError(what, path, "is truncated: " + ByteCount(total) + " of " + ByteCount(bytes) + " bytes");
   return negative;
 }
 

@@ -178,7 +178,8 @@ TransferredPoint PointTransfer::Transfer(const Eigen::Vector3d& p) const {
   // Reliable (0/1 per vertex, ColonRegistration): as the nearest of the face's vertices.
   if (const double r = SourceValue("Reliable", t); std::isfinite(r)) t.reliable = r >= 0.5;
   // Virtual wall (a bridged collapse) in either scan: no true position there.
-  t.sourceVirtual = I.sourceWall->VirtualAt(t.sourceFace, t.sourceBary) >= 0.5;
+  t.sourceVirtual = I.sourceWall->VirtualAt(t.sourceFace, t.sourceBary) >= 0.5 ||
+                    I.sourceWall->OffSeenWall(p, (p - t.sourceFoot).norm());
   t.targetVirtual = I.targetWall->VirtualAt(t.targetFace, t.targetBary) >= 0.5;
   if (t.targetVirtual) {
     const OpenPlace open = I.targetWall->NearestOpen(t.targetFace, t.targetBary);

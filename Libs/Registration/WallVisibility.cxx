@@ -1,5 +1,6 @@
 #include "Registration/WallVisibility.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -9,7 +10,9 @@ WallVisibility::WallVisibility(const TriangleMesh& mesh) : mesh_(mesh) {
   const auto v = mesh.pointData.find("Virtual");
   if (v != mesh.pointData.end() && v->second.values.rows() == mesh.V.rows() && v->second.values.cols() == 1) {
     virtual_ = v->second.values.col(0);
-    hasVirtual_ = (virtual_.array() >= 0.5).any();
+    for (Eigen::Index v = 0; v < virtual_.size(); ++v)
+      if (virtual_(v) >= 0.5) virtualVertices_.push_back(v);
+    hasVirtual_ = !virtualVertices_.empty();
   }
   const auto a = mesh.pointData.find("CenterlineArcLength");
   if (a != mesh.pointData.end() && a->second.values.rows() == mesh.V.rows() && a->second.values.cols() == 1)
@@ -50,6 +53,16 @@ OpenPlace WallVisibility::NearestOpen(int face, const Eigen::Vector3d& bary) con
     }
   }
   return best;
+}
+
+double WallVisibility::DistanceToVirtual(const Eigen::Vector3d& point) const {
+  double least = std::numeric_limits<double>::infinity();
+  for (const Eigen::Index v : virtualVertices_) least = std::min(least, (mesh_.V.row(v).transpose() - point).squaredNorm());
+  return std::sqrt(least);
+}
+
+bool WallVisibility::OffSeenWall(const Eigen::Vector3d& point, double wallDistanceMm) const {
+  return hasVirtual_ && wallDistanceMm > offWallMm && DistanceToVirtual(point) < wallDistanceMm + nearVirtualMm;
 }
 
 }  // namespace colonmap::registration

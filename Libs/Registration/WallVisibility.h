@@ -7,6 +7,7 @@
 #include "Core/TriangleMesh.h"
 
 #include <Eigen/Core>
+#include <vector>
 
 namespace colonmap::registration {
 
@@ -26,11 +27,20 @@ class WallVisibility {
   // The open vertex nearest along the colon (by CenterlineArcLength; among the vertices within
   // 2 mm of the least arc-length difference, the nearest in 3D) to a point of a face.
   OpenPlace NearestOpen(int face, const Eigen::Vector3d& bary) const;
+  // Distance (mm) from a point to the nearest vertex on virtual wall; infinite without any.
+  double DistanceToVirtual(const Eigen::Vector3d& point) const;
+  // Whether a point `wallDistanceMm` from the nearest open wall lies off the seen wall, inside a
+  // collapsed stretch: more than offWallMm from it and virtual wall within that distance plus
+  // nearVirtualMm (issue 21: an evaluation point 0-14 mm into a collapse; a finding marked on
+  // seen wall, even a polyp's tip, is within about 2 mm of the surface).
+  bool OffSeenWall(const Eigen::Vector3d& point, double wallDistanceMm) const;
+  static constexpr double offWallMm = 3.0, nearVirtualMm = 15.0;
 
  private:
   const TriangleMesh& mesh_;
   bool hasVirtual_ = false;
   Eigen::VectorXd virtual_, arc_;  // arc_ empty without CenterlineArcLength
+  std::vector<Eigen::Index> virtualVertices_;
 };
 
 }  // namespace colonmap::registration

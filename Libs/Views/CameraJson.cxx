@@ -2,6 +2,7 @@
 
 #include "Core/Error.h"
 
+#include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
 #include <fstream>
@@ -60,6 +61,13 @@ std::vector<NamedCamera> ReadCameras(const std::string& path, const std::string&
     c.pose.position = Vec(pose, "position", what, path, i);
     c.pose.focalPoint = Vec(pose, "focalPoint", what, path, i);
     c.pose.viewUp = Vec(pose, "viewUp", what, path, i);
+    // A camera that looks nowhere, or whose view-up is along its view direction, gives VTK a
+    // degenerate view matrix (a blank or NaN rendering, no word): refuse it here.
+    const Eigen::Vector3d axis = c.pose.focalPoint - c.pose.position;
+    if (!(axis.norm() > 0.0))
+      throw InputError(what, path, "view " + std::to_string(i + 1) + ": 'focalPoint' equals 'position'");
+    if (!(c.pose.viewUp.norm() > 0.0) || !(axis.normalized().cross(c.pose.viewUp).norm() > 1e-9 * c.pose.viewUp.norm()))
+      throw InputError(what, path, "view " + std::to_string(i + 1) + ": 'viewUp' is zero or along the view direction");
     out.push_back(c);
   }
   return out;

@@ -18,8 +18,9 @@ short or with bad spacing; DICOM series with a slice cut short, GDCM aborted the
 or a slice of another size, made here as a small native series and from the shared JPEG 2000
 series), outputs (unknown extension, unwritable or missing folder: the message names the user's
 path, never our hidden temporary), surfaces, landmarks folders without a segment or taeniae.vtp
-(ColonFlattening warned and exited 0), registrations, markups, and the pipeline (a failing stage
-names the user's output folder, not the hidden stage folder). Last, valid but unusual inputs that
+(ColonFlattening warned and exited 0) or with two segments swapped, registrations, markups, and the pipeline (a bad prone CT
+refused before the first stage, not after the supine half; a failing stage names the user's
+output folder, not the hidden stage folder). Last, valid but unusual inputs that
 must work: MetaImage, NIfTI, negative spacings and a left-handed frame (read as flipped axes, with
 one note on stdout), oblique NRRD and DICOM (geometry kept), native and JPEG 2000 DICOM, a legacy
 .vtk surface, and findings in RAS (mapped where the same findings in LPS are).
@@ -252,7 +253,7 @@ try:
         pd.GetPolys().GetConnectivityArray().SetValue(4, pd.GetNumberOfPoints() + 10)
 
     for label, spoil, words in (("NaN barycentric coordinates", nan_barycentric, ["ProneBarycentric", "NaN"]),
-                                ("a triangle past the points", index_past_end, ["triangle 1", "names point"])):
+                                ("a triangle past the points", index_past_end, ["polygon 1", "names point"])):
         bad = vtk.vtkPolyData()
         bad.DeepCopy(registration)
         spoil(bad)
@@ -373,7 +374,7 @@ try:
                ["unknown or unsupported image format"])
     image_case("NRRD with NaN spacing", "nan_spacing.nrrd", lambda p: raw_image(p, "spacings: nan 0.7 1\n"),
                ["spacings", "NaN"])
-    image_case("NRRD cut short", "cut.nrrd", lambda p: raw_image(p, "spacings: 0.7 0.7 1\n", cut=2000), ["cannot be read"])
+    image_case("NRRD cut short", "cut.nrrd", lambda p: raw_image(p, "spacings: 0.7 0.7 1\n", cut=2000), ["is truncated"])
     image_case("NRRD header garbage", "garbage.nrrd", lambda p: open(p, "w").write("NRRD0004\nsizes: x y\n"),
                ["cannot be read"])
     image_case("MetaImage cut short", "cut.mha", lambda p: raw_image(p, "ElementSpacing = 0.7 0.7 1\n", cut=2000),
@@ -385,6 +386,14 @@ try:
     image_case("MetaImage whose data file is cut short", "detached.mhd", detached, ["voxels.raw", "truncated"])
     image_case("MetaImage with zero spacing", "zero.mha", lambda p: raw_image(p, "ElementSpacing = 0.7 0 1\n"),
                ["spacing"])
+    image_case("MetaImage with NaN spacing", "nan.mha", lambda p: raw_image(p, "ElementSpacing = 0.7 nan 1\n"),
+               ["ElementSpacing", "'nan', not a finite number"])
+    def detached_nrrd(p):
+        open(p, "w").write("NRRD0004\ntype: short\ndimension: 3\nsizes: 24 20 16\nencoding: raw\nendian: little\n"
+                           "data file: voxels_nrrd.raw\n")
+        open(os.path.join(os.path.dirname(p), "voxels_nrrd.raw"), "wb").write(b"\0" * 1000)
+    image_case("NRRD whose data file is cut short", "detached.nhdr", detached_nrrd,
+               ["voxels_nrrd.raw", "truncated", "1000 of 15360 bytes"])
     image_case("NIfTI with an infinite spacing", "inf.nii", lambda p: nifti(p, spacing=(0.7, float("inf"), 1.0)),
                ["voxel spacing 2", "infinite"])
     image_case("NIfTI shorter than its header", "short.nii", lambda p: open(p, "wb").write(b"\0" * 100),
@@ -487,7 +496,7 @@ try:
         bad.DeepCopy(surface)
         bad.GetPolys().GetConnectivityArray().SetValue(7, bad.GetNumberOfPoints() + 3)
         write(bad, p)
-    landmarks_case("surface with a triangle past the points", "past_end.vtp", past_end, ["triangle 2", "names point"])
+    landmarks_case("surface with a triangle past the points", "past_end.vtp", past_end, ["polygon 2", "names point"])
     def points_only(p):
         bad = vtk.vtkPolyData()
         bad.SetPoints(surface.GetPoints())
@@ -514,6 +523,11 @@ try:
     flattening_case("landmarks folder with garbage taeniae",
                     lambda f: open(os.path.join(f, "taeniae.vtp"), "w").write("<VTKFile <<<"),
                     ["cannot be read"], lambda f: os.path.join(f, "taeniae.vtp"))
+    def swap_segments(f):  # was flattened and registered as if T were D (issue 24)
+        for a, b in (("segment_T.vtp", "tmp.vtp"), ("segment_D.vtp", "segment_T.vtp"), ("tmp.vtp", "segment_D.vtp")):
+            os.rename(os.path.join(f, a), os.path.join(f, b))
+    flattening_case("landmarks folder with two segments swapped", swap_segments, ["holds segment D", "not T"],
+                    lambda f: os.path.join(f, "segment_T.vtp"))
     missing = os.path.join(work, "no-landmarks-here")
     expect_refused("landmarks folder that does not exist", "ColonFlattening", [missing, os.path.join(work, "flat-x")],
                    missing, ["does not exist"], [os.path.join(work, "flat-x")])
@@ -570,6 +584,32 @@ try:
     expect_refused("pipeline with a supine CT that does not exist", "ColonSupineProne",
                    ["--supine", missing, "--prone", os.path.join(phantom, "prone.nrrd"), "--outputDirectory", out,
                     "--skipViews"], missing, ["does not exist"], [out])
+    # A bad prone CT was found only by the prone cleansing stage, after the whole supine half; now
+    # both scans are checked (header, no voxels) before the first stage. The 1.2 mm supine takes
+    # seconds per stage here, so a refusal within 5 s and without a stage start is at the door.
+    def four_d(p):
+        n = 24 * 20 * 16 * 2
+        open(p, "wb").write(b"NRRD0004\ntype: short\ndimension: 4\nsizes: 24 20 16 2\nendian: little\nencoding: raw\n"
+                            b"spacings: 0.7 0.7 1 1\n\n" + struct.pack(f"<{n}h", *[-1000] * n))
+    good_supine = os.path.join(data, "phantom-1.2mm", "supine.nrrd")
+    for label, filename, make, words in (
+            ("a truncated NIfTI", "cut.nii", lambda p: nifti(p, cut=3000), ["truncated"]),
+            ("NaN spacing", "nan.nrrd", lambda p: raw_image(p, "spacings: nan 0.7 1\n"), ["spacings", "NaN"]),
+            ("an unknown format", "ct.xyz", lambda p: open(p, "w").write("not an image\n"),
+             ["unknown or unsupported image format"]),
+            ("a 4-D image", "four.nrrd", four_d, ["4-D image", "24 x 20 x 16 x 2"]),
+            ("an empty folder", "empty-folder", os.makedirs, ["holds no DICOM series"])):
+        bad_prone = os.path.join(work, "prone_" + filename)
+        make(bad_prone)
+        out = os.path.join(work, "pipeline_prone_" + filename.replace(".", "_"))
+        start = time.time()
+        r = expect_refused(f"pipeline with a prone CT of {label}", "ColonSupineProne",
+                           ["--supine", good_supine, "--prone", bad_prone, "--outputDirectory", out, "--skipViews"],
+                           bad_prone, ["prone scan '"] + words, [out])
+        if r is not None:
+            check(time.time() - start < 5, f"pipeline with a prone CT of {label}: refused after {time.time() - start:.1f} s")
+            check("<filter-start>" not in r.stdout, f"pipeline with a prone CT of {label}: a stage ran first")
+
     tiny = os.path.join(work, "tiny.nii.gz")
     nifti(tiny, gz=True)
     out = os.path.join(work, "pipeline_stage_fails")

@@ -64,6 +64,24 @@ TEST(ModuleDescription, RejectsMalformedDescriptions) {
   EXPECT_THROW(ParseModuleDescription("<executable><parameters><image><name>a</name><index>0</index><longflag>a</longflag></image></parameters></executable>"), Error);
   EXPECT_THROW(ParseModuleDescription("<notamodule/>"), Error);
   EXPECT_THROW(ParseModuleDescription("<executable><parameters"), Error);
+  // Found writing the fuzz contract (issue 24): a NaN or infinite bound switched the range check
+  // off, and atoi read "-5" as "no index" and "x" as index 0.
+  const auto errorOf = [](const std::string& parameter) {
+    try {
+      ParseModuleDescription("<executable><parameters>" + parameter + "</parameters></executable>");
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(errorOf("<integer><name>n</name><constraints><minimum>nan</minimum></constraints></integer>"),
+            "module description: a <integer> parameter has <minimum> 'nan', not a finite number");
+  EXPECT_NE(errorOf("<double><name>d</name><constraints><maximum>1e999</maximum></constraints></double>"), "");
+  EXPECT_NE(errorOf("<double><name>d</name><constraints><maximum>ten</maximum></constraints></double>"), "");
+  EXPECT_EQ(errorOf("<image><name>a</name><index>-5</index></image>"),
+            "module description: a <image> parameter has <index> '-5', not a non-negative integer");
+  EXPECT_NE(errorOf("<image><name>a</name><index>x</index></image>"), "");
+  EXPECT_EQ(errorOf("<image><name>a</name><index>2</index></image>"), "");
 }
 
 TEST(CommandLine, AbsentFlagsTakeXmlDefaults) {

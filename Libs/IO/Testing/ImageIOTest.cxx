@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <unistd.h>
@@ -102,7 +104,18 @@ TEST(ImageIO, BadInputsGiveClearErrors) {
   // A truncated NRRD: header promises more voxels than the file holds.
   std::ofstream(dir / "truncated.nrrd") << "NRRD0004\ntype: short\ndimension: 3\nsizes: 64 64 64\n"
                                            "encoding: raw\nendian: little\n\n" << std::string(100, '\0');
-  EXPECT_NE(ErrorOf((dir / "truncated.nrrd").string()).find("cannot be read"), std::string::npos);
+  EXPECT_EQ(ErrorOf((dir / "truncated.nrrd").string()),
+            "input CT '" + (dir / "truncated.nrrd").string() + "': is truncated: its voxel data holds 100 of 524288 bytes");
+  // Detached voxel data (.nhdr): cut short, or missing.
+  std::ofstream(dir / "detached.raw") << std::string(10, '\0');
+  std::ofstream(dir / "detached.nhdr") << "NRRD0004\ntype: unsigned short\ndimension: 3\nsizes: 2 2 2\n"
+                                          "encoding: raw\nendian: little\ndata file: detached.raw\n";
+  EXPECT_EQ(ErrorOf((dir / "detached.nhdr").string()), "input CT '" + (dir / "detached.nhdr").string() +
+                                                           "': is truncated: its voxel data file 'detached.raw' holds 10 of 16 bytes");
+  std::ofstream(dir / "lost.nhdr") << "NRRD0004\ntype: short\ndimension: 3\nsizes: 2 2 2\n"
+                                      "encoding: raw\nendian: little\ndata file: lost.raw\n";
+  EXPECT_EQ(ErrorOf((dir / "lost.nhdr").string()),
+            "input CT '" + (dir / "lost.nhdr").string() + "': its voxel data file 'lost.raw' does not exist");
   // NaN spacing.
   std::ofstream(dir / "nan.nrrd") << "NRRD0004\ntype: short\ndimension: 3\nsizes: 2 2 2\n"
                                      "spacings: nan 1 1\nencoding: raw\nendian: little\n\n" << std::string(16, '\0');
@@ -110,8 +123,57 @@ TEST(ImageIO, BadInputsGiveClearErrors) {
   EXPECT_EQ(nan, "input CT '" + (dir / "nan.nrrd").string() + "': header field 'spacings:' holds NaN");
   std::ofstream(dir / "nan.mha") << "ObjectType = Image\nNDims = 3\nDimSize = 2 2 2\nElementSpacing = nan 1 1\n"
                                     "ElementType = MET_SHORT\nElementDataFile = LOCAL\n" << std::string(16, '\0');
-  EXPECT_NE(ErrorOf((dir / "nan.mha").string()).find("nan.mha': "), std::string::npos);
+  // MetaIO printed 4 lines of its own and ITK then blamed a missing file.
+  EXPECT_EQ(ErrorOf((dir / "nan.mha").string()),
+            "input CT '" + (dir / "nan.mha").string() + "': header field 'ElementSpacing' holds 'nan', not a finite number");
   for (const std::string& m : {nan, ErrorOf((dir / "truncated.nrrd").string())}) EXPECT_EQ(m.find('\n'), std::string::npos);
+  fs::remove_all(dir);
+}
+
+// Found by fuzzing (issue 24): an infinite NRRD spacing or origin was let through to ITK; header
+// sizes beyond a long long (NIfTI, MetaImage) were cast to one for the message (undefined
+// behaviour); a NIfTI-2 dim[0] beyond an int was cast before it was checked.
+TEST(ImageIO, FuzzFoundHeadersGiveClearErrors) {
+  const fs::path dir = TempDir("fuzz");
+  std::ofstream(dir / "inf.nrrd") << "NRRD0004\ntype: short\ndimension: 3\nsizes: 2 2 2\n"
+                                     "spacings: 0.7 inf 1\nencoding: raw\nendian: little\n\n" << std::string(16, '\0');
+  EXPECT_EQ(ErrorOf((dir / "inf.nrrd").string()),
+            "input CT '" + (dir / "inf.nrrd").string() + "': header field 'spacings:' holds an infinite number ('inf')");
+  std::ofstream(dir / "huge.nrrd") << "NRRD0004\ntype: short\ndimension: 3\nsizes: 2 2 2\n"
+                                      "space: left-posterior-superior\nspace origin: (0,1e999,0)\nencoding: raw\nendian: little\n\n"
+                                   << std::string(16, '\0');
+  EXPECT_EQ(ErrorOf((dir / "huge.nrrd").string()), "input CT '" + (dir / "huge.nrrd").string() +
+                                                       "': header field 'space origin:' holds an infinite number ('1e999')");
+  std::ofstream(dir / "huge.mha") << "ObjectType = Image\nNDims = 3\nDimSize = 100000000000 100000000000 1000\n"
+                                     "ElementType = MET_DOUBLE\nElementDataFile = LOCAL\n" << std::string(16, '\0');
+  EXPECT_NE(ErrorOf((dir / "huge.mha").string()).find("huge.mha': is truncated: its voxel data holds 16 of 8"), std::string::npos);
+  // NIfTI-1 with 7 axes of 32767 voxels (about 3e32 bytes), and a NIfTI-2 with dim[0] = 1e15.
+  const auto put = [](std::string& h, std::size_t at, const auto value) { std::memcpy(&h[at], &value, sizeof value); };
+  std::string one(352, '\0');
+  put(one, 0, std::int32_t(348));
+  put(one, 40, std::int16_t(7));
+  for (int k = 1; k <= 7; ++k) put(one, 40 + 2 * k, std::int16_t(32767));
+  put(one, 70, std::int16_t(64));
+  put(one, 72, std::int16_t(64));
+  for (int k = 0; k < 8; ++k) put(one, 76 + 4 * k, 1.0f);
+  put(one, 108, 352.0f);
+  one.replace(344, 4, std::string("n+1\0", 4));
+  std::ofstream(dir / "huge.nii", std::ios::binary) << one;
+  const std::string huge = ErrorOf((dir / "huge.nii").string());
+  EXPECT_NE(huge.find("huge.nii': is truncated: 352 of 3244"), std::string::npos) << huge;
+  std::string two(552, '\0');
+  put(two, 0, std::int32_t(540));
+  put(two, 16, std::int64_t(1000000000000000));
+  std::ofstream(dir / "ndim.nii", std::ios::binary) << two;
+  EXPECT_EQ(ErrorOf((dir / "ndim.nii").string()),
+            "input CT '" + (dir / "ndim.nii").string() + "': NIfTI header has 1000000000000000 dimensions");
+  // More spacings than axes: the note named axes 4 and 5 of a 3-D image.
+  std::ofstream(dir / "many.mha") << "ObjectType = Image\nNDims = 3\nDimSize = 2 2 2\nElementSpacing = 1 -1 1 -1 -1\n"
+                                     "ElementType = MET_SHORT\nElementDataFile = LOCAL\n" << std::string(16, '\0');
+  std::vector<std::string> notes;
+  io::ReadImage<short>((dir / "many.mha").string(), "input CT", [&](const std::string& n) { notes.push_back(n); });
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes[0].find("many.mha': negative voxel spacing on axis 2 in the file"), std::string::npos) << notes[0];
   fs::remove_all(dir);
 }
 
@@ -154,5 +216,65 @@ TEST(ImageIO, CutShortMetaImageAndDicomSliceRefused) {
   const std::string m = ErrorOf(series.string());
   EXPECT_NE(m.find("'" + series.string() + "': slice file '" + files[5].filename().string() + "' is cut short"),
             std::string::npos) << m;
+  fs::remove_all(dir);
+}
+
+namespace {
+
+std::string CheckErrorOf(const std::string& path) {
+  try {
+    io::CheckImageFile(path, "input CT");
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+// The door check of a pipeline's scans (issue 24): no voxels read, and for each problem it finds
+// the very message ReadImage gives.
+TEST(ImageIO, CheckImageFileReadsNoVoxelsAndSaysWhatReadImageSays) {
+  const fs::path dir = TempDir("check");
+  const auto path = [&](const char* name) { return (dir / name).string(); };
+  const std::string header = "NRRD0004\ntype: short\nendian: little\nencoding: raw\n";
+  // Compressed voxel data that is corrupt: only a voxel read can tell, so the check passes where
+  // ReadImage fails (raw data cut short is found from the file size, by both).
+  std::ofstream(path("bad_gzip.nrrd")) << "NRRD0004\ntype: short\nendian: little\nencoding: gzip\n"
+                                       << "dimension: 3\nsizes: 64 64 64\n\n" << std::string("\x1f\x8b\x08\x00garbage", 12);
+  EXPECT_EQ(CheckErrorOf(path("bad_gzip.nrrd")), "");
+  EXPECT_NE(ErrorOf(path("bad_gzip.nrrd")).find("cannot be read"), std::string::npos);
+  std::ofstream(path("short_voxels.nrrd")) << header << "dimension: 3\nsizes: 64 64 64\n\n" << std::string(100, '\0');
+  for (const std::string& good : {kData + "/example_ct.nii.gz", kData + "/example_ct_dicom"})
+    EXPECT_EQ(CheckErrorOf(good), "") << good;
+  EXPECT_NO_THROW(io::CheckImageFile("slicer:0x1234#vtkMRMLScalarVolumeNode1", "input CT"));
+
+  std::ofstream(path("x.unknownext")) << "hello";
+  std::ofstream(path("nan.nrrd")) << header << "dimension: 3\nsizes: 2 2 2\nspacings: nan 1 1\n\n" << std::string(16, '\0');
+  std::ofstream(path("four.nrrd")) << header << "dimension: 4\nsizes: 2 2 2 3\n\n" << std::string(48, '\0');
+  std::ofstream(path("garbage.nrrd")) << "NRRD0004\nsizes: x y\n";
+  std::ofstream(path("zero.mha")) << "ObjectType = Image\nNDims = 3\nDimSize = 2 2 2\nElementSpacing = 0.7 0 1\n"
+                                     "ElementType = MET_SHORT\nElementDataFile = LOCAL\n" << std::string(16, '\0');
+  std::ofstream(path("cut.nii"), std::ios::binary) << std::string(200, '\0');
+  fs::create_directories(dir / "empty");
+  fs::create_directories(dir / "no-dicom");
+  std::ofstream(dir / "no-dicom" / "README.txt") << "no images here\n";
+  const fs::path series = dir / "cut-series";
+  fs::create_directories(series);
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(kData + "/example_ct_dicom")) files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  for (const auto& f : files) fs::copy_file(f, series / f.filename());
+  fs::permissions(series / files[3].filename(), fs::perms::owner_write, fs::perm_options::add);
+  fs::resize_file(series / files[3].filename(), 2000);
+  for (const std::string& bad : {path("missing.nrrd"), path("short_voxels.nrrd"), path("x.unknownext"), path("nan.nrrd"), path("four.nrrd"),
+                                path("garbage.nrrd"), path("zero.mha"), path("cut.nii"), path("empty"),
+                                path("no-dicom"), series.string(), std::string()}) {
+    const std::string m = CheckErrorOf(bad);
+    EXPECT_NE(m, "") << bad;
+    EXPECT_EQ(m, ErrorOf(bad)) << bad;
+  }
+  EXPECT_EQ(CheckErrorOf(path("four.nrrd")),
+            "input CT '" + path("four.nrrd") + "': is a 4-D image (2 x 2 x 2 x 3 voxels), not a 3-D volume");
   fs::remove_all(dir);
 }

@@ -92,7 +92,8 @@ TEST(QualityFlags, JointFlexuresAreTrustedOnlyWithAnOrderedChoiceAndAGoodAlignme
   };
   StageSummaries s = Good();
   s.landmarks[0]["jointChoice"] = joint(true, false, 0.08);
-  const QualityFlag& ok = Find(AssessQuality(s), "Flexures chosen jointly");
+  const auto flags = AssessQuality(s);  // Find returns a reference into it (found by ASan)
+  const QualityFlag& ok = Find(flags, "Flexures chosen jointly");
   EXPECT_TRUE(ok.ok) << ok.detail;
   EXPECT_NE(ok.detail.find("DSJ carried from supine"), std::string::npos);
   s.landmarks[0]["jointChoice"] = joint(false, true, 0.08);

@@ -271,3 +271,26 @@ TEST(CameraJson, RoundTripOfOwnOutput) {
   EXPECT_EQ(SafeLabel("", "V1"), "V1");
   EXPECT_THROW(ReadCameras("/nonexistent/cameras.json", "cameras"), Error);
 }
+
+// Found by fuzzing (issue 24): a camera looking nowhere, or with its view-up along the view
+// direction, was accepted and gave VTK a degenerate view matrix.
+TEST(CameraJson, DegenerateCamerasRefused) {
+  const std::filesystem::path path = std::filesystem::temp_directory_path() / "colonmap-camera-json-degenerate.json";
+  const auto errorOf = [&](const std::string& text) {
+    std::ofstream(path) << text;
+    try {
+      ReadCameras(path.string(), "cameras");
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(errorOf(R"({"views":[{"position":[0,0,0],"focalPoint":[0,0,0],"viewUp":[0,0,1]}]})"),
+            "cameras '" + path.string() + "': view 1: 'focalPoint' equals 'position'");
+  EXPECT_EQ(errorOf(R"([{"position":[0,0,0],"focalPoint":[0,1,0],"viewUp":[0,0,1]},
+                        {"position":[0,0,0],"focalPoint":[0,0,1],"viewUp":[0,0,2]}])"),
+            "cameras '" + path.string() + "': view 2: 'viewUp' is zero or along the view direction");
+  EXPECT_NE(errorOf(R"([{"position":[0,0,0],"focalPoint":[0,1,0],"viewUp":[0,0,0]}])").find("'viewUp' is zero"), std::string::npos);
+  EXPECT_EQ(errorOf(R"([{"position":[0,0,0],"focalPoint":[0,1,0],"viewUp":[0,0,1]}])"), "");
+  std::filesystem::remove(path);
+}

@@ -108,7 +108,8 @@ void Run(cli::ModuleContext& ctx) {
   // Collapsed stretches (phantom truth says collapsed=true|false per scan): the truth points on
   // wall open in the supine scan but collapsed in the prone one (a finding there has no prone
   // position) and how many of them the transfer flags visible=false; those collapsed in the
-  // supine scan (no reader can mark them) likewise; and open points it flags wrongly.
+  // supine scan (inside a bridged stretch, or off the seen wall beside it) likewise; and open
+  // points it flags wrongly.
   long proneOnly = 0, proneOnlyFlagged = 0, supineClosed = 0, supineClosedFlagged = 0, openHidden = 0;
   bool collapseTruth = false;
   json perPoint = json::array();
@@ -224,8 +225,8 @@ void Run(cli::ModuleContext& ctx) {
                            {"supine", supineClosed}, {"supineNotVisible", supineClosedFlagged},
                            {"openButNotVisible", openHidden},
                            {"note", "truth points on wall open in the supine scan and collapsed in the prone scan (proneOnly) "
-                                    "and those the transfer marks visible=false; points collapsed in the supine scan (no reader "
-                                    "can mark them) likewise; open points marked visible=false; 'open' holds the errors of the "
+                                    "and those the transfer marks visible=false; points collapsed in the supine scan (on its "
+                                    "bridged wall or off the seen wall beside it) likewise; open points marked visible=false; 'open' holds the errors of the "
                                     "points open in both scans"}};
   }
   report["unmatchedLabels"] = unmatched;

@@ -16,6 +16,7 @@
 #include "Landmarks/ColonLandmarks.h"
 #include "IO/ImageIO.h"
 #include "IO/MeshIO.h"
+#include "IO/SegmentFile.h"
 #include "Surface/MeanCurvature.h"
 #include "Surface/MeshTopology.h"
 
@@ -120,6 +121,7 @@ void Run(cli::ModuleContext& ctx) {
       return s;
     };
     TriangleMesh mesh = io::ReadMesh(segPath, "segment " + X);
+    io::CheckSegmentId(mesh, id, "segment " + X, segPath);  // not renamed or swapped with another's file
     // Faces with all corners on an end loop would collapse under f1's fixed end values.
     const int chords = SplitBoundaryChords(mesh);
     if (chords)

@@ -7,6 +7,7 @@
 #include "IO/ImageIO.h"
 #include "IO/MarkupsIO.h"
 #include "IO/MeshIO.h"
+#include "IO/SegmentFile.h"
 #include "Registration/EmbeddedProneMesh.h"
 #include "Registration/FlatLocator.h"
 #include "Registration/RegistrationReliability.h"
@@ -49,13 +50,7 @@ ScanSegment ReadSegment(const fs::path& dir, int id, const json& report, const s
   const std::string path = (dir / ("flat_" + X + ".vtp")).string(), what = scan + " flat mesh " + X;
   s.flat = io::ReadMesh(path, what);
   if (s.flat.F.rows() == 0) throw InputError(what, path, "has no triangles");
-  // A file renamed or swapped with another segment's (issue 24): its SegmentId says which it is.
-  if (auto sid = s.flat.pointData.find("SegmentId"); sid != s.flat.pointData.end() && sid->second.values.size() > 0) {
-    const double other = (sid->second.values.array() != static_cast<double>(id)).select(sid->second.values.array(), -1.0).maxCoeff();
-    if (other >= 0 && other < 5)
-      throw InputError(what, path, std::string("holds segment ") + kNames[static_cast<int>(other)] + " (SegmentId " +
-                                       std::to_string(static_cast<int>(other)) + "), not " + X);
-  }
+  io::CheckSegmentId(s.flat, id, what, path);  // not renamed or swapped with another segment's file
   s.input.flat.uv = Need(s.flat, "FlatUV", 2, what, path).values;
   s.input.flat.position = Need(s.flat, "Position3D", 3, what, path).values;
   s.input.flat.F = s.flat.F;

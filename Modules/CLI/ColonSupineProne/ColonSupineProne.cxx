@@ -6,6 +6,7 @@
 #include "CLI/Format.h"
 #include "CLI/ModuleRunner.h"
 #include "Core/Error.h"
+#include "IO/ImageCheck.h"
 #include "IO/MarkupsIO.h"
 #include "IO/NodeFiles.h"
 #include "Report/PipelineReport.h"
@@ -192,10 +193,11 @@ std::vector<std::pair<std::string, double>> Plan(const Options& o) {
 void CheckInputs(const Options& o, bool scansMustExist = true) {
   for (int k = 0; k < 2 && scansMustExist; ++k) {
     if (o.scan[k].empty()) throw Error(std::string(kScans[k]) + " scan: no file given (--" + kScans[k] + ")");
-    if (!fs::exists(o.scan[k])) throw InputError(std::string(kScans[k]) + " scan", o.scan[k], "does not exist");
+    // Format, header and geometry, without the voxels: a bad prone CT must stop the run before
+    // the supine half is done, not after it (issue 24). A host's "slicer:" node passes.
+    io::CheckImageFile(o.scan[k], std::string(kScans[k]) + " scan");
   }
-  // Everything read late in the pipeline is read now too: a bad findings or truth file must stop
-  // the run before a minute of work, not after it (issue 24).
+  // Everything else read late in the pipeline is read now too, for the same reason.
   if (!o.findings.empty()) {
     if (!fs::is_regular_file(o.findings)) throw InputError("findings", o.findings, "does not exist");
     if (io::ReadMarkups(o.findings, "findings").points.empty()) throw InputError("findings", o.findings, "holds no points");

@@ -4,8 +4,8 @@ ColonPhantom --collapse makes a pair whose lumen is closed over stretches of one
 tube phantom at 2.5 mm, seeds 4 and 9, and the HuBMAP male colon at 2 mm), ColonSupineProne runs every stage on
 the two CTs. Checked: the run completes; each scan's segmentation keeps one piece more than its
 collapses; the wall open in both scans registers within 3 mm on average; every evaluation point
-open in the supine scan but collapsed in the prone one is marked visible=false; few open points
-are; the report flags the collapse.
+open in the supine scan but collapsed in the prone one is marked visible=false, and nearly every
+one inside a supine collapse; few open points are; the report flags the collapse.
 
 Usage: collapsed_colon_test.py <cli-modules folder> <shared folder>
 """
@@ -61,6 +61,12 @@ try:
         check(openMean <= 3.0, f"{name}: wall open in both scans {openMean:.2f} mm mean (> 3 mm)")
         check(c["proneOnlyNotVisible"] == c["proneOnly"], f"{name}: a point on collapsed prone wall was given a position")
         check(c["openButNotVisible"] <= 0.05 * openCount, f"{name}: {c['openButNotVisible']} open points marked not visible")
+        # Points inside a supine collapse (no reader can mark one, but a position there would be
+        # false): marked too, save those within 3 mm of the seen wall at a collapse's end (1 of 17
+        # on seed 9, at 1.9 mm; 140 of 143 over 20 tube pairs, docs/accuracy.md).
+        print(f"{name}: collapsed in supine {c['supine']}, marked visible=false {c['supineNotVisible']}")
+        check(c["supineNotVisible"] >= 0.9 * c["supine"],
+              f"{name}: {c['supineNotVisible']} of {c['supine']} points in supine-collapsed wall marked visible=false")
         flags = {f["name"]: f for f in summary["quality"]}
         pieces = summary.get("pieces", {})
         for scan in ("supine", "prone"):
