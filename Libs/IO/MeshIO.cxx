@@ -35,6 +35,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -117,12 +118,15 @@ private:
       vtkXMLDataElement* e = todo.back();
       todo.pop_back();
       for (int i = 0; i < e->GetNumberOfNestedElements(); ++i) todo.push_back(e->GetNestedElement(i));
-      // VTK sizes per-component storage by NumberOfComponents (-13 ended in std::length_error); each
-      // component of a tuple needs at least a byte of the file.
-      int declared = 1;
-      if (e->GetScalarAttribute("NumberOfComponents", declared) && (declared < 1 || declared > fileSize)) {
-        const char* name = e->GetAttribute("Name");
-        return "array '" + std::string(name ? name : "") + "' declares " + std::to_string(declared) + " components";
+      // VTK sizes per-component storage by NumberOfComponents (-13 ended in std::length_error, 10^75
+      // in a loop over 2^31 components); each component of a tuple needs at least a byte of the file.
+      if (const char* text = e->GetAttribute("NumberOfComponents")) {
+        char* end = nullptr;
+        const double declared = std::strtod(text, &end);
+        if (end != text && !(declared >= 1 && declared <= fileSize)) {
+          const char* name = e->GetAttribute("Name");
+          return "array '" + std::string(name ? name : "") + "' declares " + std::string(text) + " components";
+        }
       }
       // A piece that declares cells has their offsets and connectivity (VTK dereferences a null
       // array reading cell data without them).

@@ -182,6 +182,10 @@ TEST(MeshIO, FuzzFoundInputsGiveClearErrors) {
          AsciiTriangle("    <FieldData><DataArray type=\"Int32\" Name=\"T\" NumberOfComponents=\"-13\" "
                        "NumberOfTuples=\"1\" format=\"ascii\">0</DataArray></FieldData>\n"),
          "array 'T' declares -13 components");
+  expect("manycomponents.vtp",
+         AsciiTriangle("    <FieldData><DataArray type=\"Int32\" Name=\"T\" NumberOfComponents=\"99999999999\" "
+                       "NumberOfTuples=\"1\" format=\"ascii\">0</DataArray></FieldData>\n"),
+         "array 'T' declares 99999999999 components");
   expect("strings.vtp",
          AsciiTriangle("    <FieldData><Array type=\"String\" Name=\"SPACE\" NumberOfTuples=\"1\" format=\"ascii\">"
                        "76 80 83 0 0</Array></FieldData>\n"),
