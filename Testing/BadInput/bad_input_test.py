@@ -18,7 +18,9 @@ short or with bad spacing; DICOM series with a slice cut short, GDCM aborted the
 or a slice of another size, made here as a small native series and from the shared JPEG 2000
 series), outputs (unknown extension, unwritable or missing folder: the message names the user's
 path, never our hidden temporary), surfaces, landmarks folders without a segment or taeniae.vtp
-(ColonFlattening warned and exited 0) or with two segments swapped, registrations, markups, and the pipeline (a bad prone CT
+(ColonFlattening warned and exited 0) or with two segments swapped, registrations, stage reports
+(landmarks.json, flattening.json, registration.json) with a field of the wrong type or missing, markups,
+and the pipeline (a bad prone CT
 refused before the first stage, not after the supine half; a failing stage names the user's
 output folder, not the hidden stage folder). Last, valid but unusual inputs that
 must work: MetaImage, NIfTI, negative spacings and a left-handed frame (read as flipped axes, with
@@ -491,6 +493,28 @@ try:
                    ["unknown surface format"])
     landmarks_case("legacy .vtk surface that is garbage", "garbage.vtk", lambda p: open(p, "w").write("# vtk DataFile\nno\n"),
                    [])
+    # Legacy files VTK's own reader trusted (our reader checks every count): a binary surface cut
+    # short in its triangles, and an ASCII one whose polygon names a point past the end.
+    def legacy(p, binary):
+        w = vtk.vtkPolyDataWriter()
+        w.SetInputData(surface)
+        w.SetFileName(p)
+        if binary:
+            w.SetFileTypeToBinary()
+        w.Write()
+    def legacy_cut(p):
+        legacy(p, True)
+        data = open(p, "rb").read()
+        open(p, "wb").write(data[:data.index(b"CONNECTIVITY") + 40])
+    landmarks_case("legacy .vtk surface cut short", "cut.vtk", legacy_cut, ["cut short"])
+    def legacy_past_end(p):
+        legacy(p, False)
+        text = open(p).read()
+        start = text.index("\n", text.index("CONNECTIVITY")) + 1
+        first = text.index(" ", start)
+        open(p, "w").write(text[:start] + "999999" + text[first:])
+    landmarks_case("legacy .vtk surface naming a point past the end", "past_end.vtk", legacy_past_end,
+                   ["naming point 999999"])
     def past_end(p):
         bad = vtk.vtkPolyData()
         bad.DeepCopy(surface)
@@ -528,6 +552,10 @@ try:
             os.rename(os.path.join(f, a), os.path.join(f, b))
     flattening_case("landmarks folder with two segments swapped", swap_segments, ["holds segment D", "not T"],
                     lambda f: os.path.join(f, "segment_T.vtp"))
+    flattening_case("landmarks folder whose landmarks.json has a number for pairedWith",  # was a json type_error
+                    lambda f: json.dump({"jointChoice": {"pairedWith": 7, "consistent": True, "fallback": False}},
+                                        open(os.path.join(f, "landmarks.json"), "w")),
+                    ["'jointChoice.pairedWith' is a number, not a string"], lambda f: os.path.join(f, "landmarks.json"))
     missing = os.path.join(work, "no-landmarks-here")
     expect_refused("landmarks folder that does not exist", "ColonFlattening", [missing, os.path.join(work, "flat-x")],
                    missing, ["does not exist"], [os.path.join(work, "flat-x")])
@@ -537,6 +565,28 @@ try:
     expect_refused("prone flattening folder that does not exist", "ColonRegistration",
                    [os.path.join(reg, "supine"), os.path.join(work, "no-prone"), out], os.path.join(work, "no-prone"), [],
                    [out])
+    # Stage reports handed on with a field of the wrong type (IO/StageReports): refused naming the report.
+    def spoil_report(folder, file, spoil):
+        path = os.path.join(folder, file)
+        report = json.load(open(path))
+        spoil(report)
+        json.dump(report, open(path, "w"))
+        return path
+    wrong_width = os.path.join(work, "supine-width-string")
+    shutil.copytree(os.path.join(reg, "supine"), wrong_width)
+    report = spoil_report(wrong_width, "flattening.json", lambda j: j["segments"]["A"].update(flatWidth="1.0"))
+    out = os.path.join(work, "reg-width-string")
+    expect_refused("flattening.json with a string for a flat width", "ColonRegistration",
+                   [wrong_width, os.path.join(reg, "prone"), out], report,
+                   ["'segments.A.flatWidth' is a string, not a number"], [out])
+    no_prone_uv = os.path.join(work, "registration-match-without-proneUV")
+    shutil.copytree(os.path.join(reg, "registration"), no_prone_uv)
+    report = spoil_report(no_prone_uv, "registration.json",  # read through a missing key before (undefined behaviour)
+                          lambda j: j["segments"]["A"].update(features={"matches": [{"label": "FA1", "supineUV": [0.5, 0.5]}]}))
+    out = os.path.join(work, "flatviews-match-without-proneUV")
+    expect_refused("registration.json with a fold match without proneUV", "ColonFlatViews",
+                   [os.path.join(reg, "supine"), os.path.join(reg, "prone"), no_prone_uv, out], report,
+                   ["'segments.A.features.matches[0].proneUV' is missing"], [out])
     nan_points = os.path.join(work, "registration_nan_point.vtp")
     bad = vtk.vtkPolyData()
     bad.DeepCopy(registration)

@@ -367,6 +367,24 @@ def test_report_only(a):
     rp = dict(l.rstrip("\n").split(" = ", 1) for l in open(ret) if " = " in l)
     check(rp.get("warnings") == str(s["warnings"]) and float(rp.get("meanError", "nan")) > 0,
           f"--reportOnly return parameters ({rp})")
+    # A stage file with a field of another type than the report reads (edited by hand) is the
+    # folder's problem: one line naming it, no "internal error", nothing written.
+    spoilt = os.path.join(work, "spoilt")
+    shutil.copytree(copy, spoilt)
+    for name in ("summary.json", "report.html"):
+        os.remove(os.path.join(spoilt, name))
+    reg_json = os.path.join(spoilt, "registration", "registration.json")
+    reg = json.load(open(reg_json))
+    for seg in reg.get("segments", {}).values():
+        if isinstance(seg, dict) and "trusted" in seg:
+            seg["trusted"] = "yes"
+    json.dump(reg, open(reg_json, "w"))
+    r = subprocess.run([exe, "--reportOnly", *inputs, "--outputDirectory", spoilt, "--stageRecords", records],
+                       stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    lines = r.stderr.strip().splitlines()
+    check(r.returncode != 0 and len(lines) == 1 and spoilt in lines[0] and "internal error" not in lines[0]
+          and not os.path.exists(os.path.join(spoilt, "summary.json")),
+          f"--reportOnly on a hand-spoilt registration.json fails with one line naming the folder ({r.stderr.strip()})")
     # Without the stage folders it refuses, naming what is missing, and writes nothing.
     empty = os.path.join(work, "empty")
     os.makedirs(empty)

@@ -163,14 +163,14 @@ TEST(MeshIO, FuzzFoundInputsGiveClearErrors) {
     Spit(p, bytes);
     EXPECT_EQ(ReadError(p), "surface '" + p + "': " + problem) << name;
   };
-  // Our bugs: a point id of 2^32 became point 0 (int cast); decreasing legacy offsets made the
-  // traversal read before the connectivity.
+  // Our bugs: a point id of 2^32 became point 0 (int cast); decreasing legacy offsets made VTK's
+  // traversal read before the connectivity (now our own legacy reader refuses them).
   expect("id.vtp", AsciiTriangle("", "NumberOfComponents=\"3\"", "0 1 4294967296"),
          "polygon 0 names point 4294967296, but there are 3 points");
   expect("offsets.vtk",
          "# vtk DataFile Version 5.1\nvtk output\nASCII\nDATASET POLYDATA\nPOINTS 3 float\n0 0 0 1 0 0 0 1 0\n"
          "POLYGONS 3 3\nOFFSETS vtktypeint64\n0 3 1\nCONNECTIVITY vtktypeint64\n0 1 2\n",
-         "has polygon offsets that decrease or do not match the connectivity");
+         "has POLYGONS offsets that do not start at 0 and end at the connectivity's size");
   // VTK's: crashes (null array, out-of-range string, std::length_error) and a leak.
   expect("fieldtype.vtp",
          AsciiTriangle("    <FieldData><DataArray type=\"Ltring\" Name=\"SPACE\" NumberOfTuples=\"1\" "
@@ -195,6 +195,16 @@ TEST(MeshIO, FuzzFoundInputsGiveClearErrors) {
                     "      <CellData><DataArray type=\"Float32\" Name=\"K\" format=\"ascii\"></DataArray>"
                     "</CellData>\n");
   expect("shortcells.vtp", shortCells, "cell data array 'K' does not hold the 1 values its cells need");
+  std::string twoNames = AsciiTriangle();
+  twoNames.insert(twoNames.find("      <Points>"),
+                  "      <CellData><DataArray type=\"Int8\" Name=\"A\" format=\"ascii\">1</DataArray>"
+                  "<DataArray type=\"Int8\" Name=\"A\" format=\"ascii\">2</DataArray></CellData>\n");
+  expect("twonames.vtp", twoNames, "CellData has two arrays named 'A'");
+  std::string shortStrings = AsciiTriangle();
+  shortStrings.insert(shortStrings.find("      <Points>"),
+                      "      <PointData><Array type=\"String\" Name=\"S\" format=\"ascii\">65 0</Array>"
+                      "</PointData>\n");
+  expect("shortstrings.vtp", shortStrings, "string array 'S' holds 1 strings, not 3");
   std::string noCells = AsciiTriangle();
   noCells.erase(noCells.find("      <Polys>"), noCells.find("    </Piece>") - noCells.find("      <Polys>"));
   expect("nocells.vtp", noCells, "declares 1 Polys but has no Polys offsets and connectivity");

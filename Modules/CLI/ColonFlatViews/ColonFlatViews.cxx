@@ -6,6 +6,7 @@
 #include "Core/Error.h"
 #include "IO/ImageIO.h"
 #include "IO/MeshIO.h"
+#include "IO/StageReports.h"
 #include "Registration/FlatLocator.h"
 #include "Registration/FoldFeatures.h"
 #include "Views/ColourMap.h"
@@ -43,17 +44,6 @@ constexpr double kPi = 3.14159265358979323846;
 const Bgr kGrey{150, 150, 150};
 const Bgr kOutside{230, 230, 230};
 
-json ReadJson(const fs::path& p, const std::string& what, bool required) {
-  if (!fs::exists(p)) {
-    if (required) throw InputError(what, p.string(), "does not exist");
-    return json::object();
-  }
-  std::ifstream f(p);
-  json j = json::parse(f, nullptr, false);
-  if (j.is_discarded()) throw InputError(what, p.string(), "is not valid JSON");
-  return j;
-}
-
 // One scan's side of one segment: its part of the registration mesh and its flat picture grid.
 struct Side {
   FlatSegmentMesh mesh;
@@ -65,15 +55,13 @@ struct Side {
   FlatPixelHits hits;
 };
 
-double PeriodOf(const json& report, const std::string& X, const Eigen::MatrixXd& uv, const Eigen::MatrixXd& position) {
-  if (report.contains("segments") && report["segments"].contains(X) && report["segments"][X].contains("flatWidth") &&
-      report["segments"][X]["flatWidth"].is_number())
-    return report["segments"][X]["flatWidth"].get<double>();
+double PeriodOf(const io::FlatteningReport& report, const std::string& X, const Eigen::MatrixXd& uv, const Eigen::MatrixXd& position) {
+  if (const auto it = report.segments.find(X); it != report.segments.end() && it->second.flatWidth) return *it->second.flatWidth;
   return registration::FlatPeriodFromCut(uv, position);
 }
 
 Side MakeSide(const TriangleMesh& whole, const std::string& wholePath, int id, const std::string& ownUV, const std::string& otherUV,
-              const fs::path& flatDir, const json& report, double ppu, const std::string& scan, ProgressSink& progress) {
+              const fs::path& flatDir, const io::FlatteningReport& report, double ppu, const std::string& scan, ProgressSink& progress) {
   const std::string X = kNames[id];
   Side s;
   s.mesh = ExtractSegment(whole, id, scan + " registration mesh '" + wholePath + "'");
@@ -198,9 +186,10 @@ void RunColonFlatViews(cli::ModuleContext& ctx) {
   const Eigen::MatrixXd& K = CellArray(supine, "Dilatation", 1, regWhat);
   const Eigen::MatrixXd& muArg = CellArray(supine, "BeltramiArg", 1, regWhat);
   const Eigen::MatrixXd& segmentId = PointArray(supine, "SegmentId", 1, regWhat);
-  const json regReport = ReadJson(fs::path(rdir) / "registration.json", "registration report", false);
-  const json sReport = ReadJson(fs::path(sdir) / "flattening.json", "supine flattening report", false);
-  const json pReport = ReadJson(fs::path(pdir) / "flattening.json", "prone flattening report", false);
+  const io::RegistrationReport regReport =
+      io::ReadRegistrationReport((fs::path(rdir) / "registration.json").string(), "registration report");
+  const io::FlatteningReport sReport = io::ReadFlatteningReport((fs::path(sdir) / "flattening.json").string(), "supine flattening report");
+  const io::FlatteningReport pReport = io::ReadFlatteningReport((fs::path(pdir) / "flattening.json").string(), "prone flattening report");
   std::vector<int> present;
   for (int id = 0; id < 5; ++id)
     if ((segmentId.col(0).array().round() == id).any()) present.push_back(id);
@@ -324,18 +313,17 @@ void RunColonFlatViews(cli::ModuleContext& ctx) {
     for (SegmentViews& v : views) {
       ColourImage a = curvature(v.supineH), b = curvature(v.proneH);
       std::vector<bool> sMatched(v.sFolds.size(), false), pMatched(v.pFolds.size(), false);
-      json matches = json::array();
-      if (regReport.contains("segments") && regReport["segments"].contains(v.name) && regReport["segments"][v.name].contains("features"))
-        matches = regReport["segments"][v.name]["features"].value("matches", json::array());
+      const auto listed = regReport.matches.find(v.name);
+      const std::vector<io::FoldMatch> none;
       struct Pair { int s, p; std::string label; };
       std::vector<Pair> pairs;
-      for (const json& m : matches) {
-        const Eigen::Vector2d su(m["supineUV"][0].get<double>(), m["supineUV"][1].get<double>());
-        const Eigen::Vector2d pu(m["proneUV"][0].get<double>(), m["proneUV"][1].get<double>());
+      for (const io::FoldMatch& m : listed == regReport.matches.end() ? none : listed->second) {
+        const Eigen::Vector2d& su = m.supineUV;
+        const Eigen::Vector2d& pu = m.proneUV;
         const int fs = FoldAt(v.sFolds, su, v.s.period), fp = FoldAt(v.pFolds, pu, v.p.period);
         if (fs >= 0) sMatched[fs] = true;
         if (fp >= 0) pMatched[fp] = true;
-        pairs.push_back({fs, fp, m.value("label", std::string())});
+        pairs.push_back({fs, fp, m.label});
         // A match whose fold the detector here does not reproduce is drawn at its listed centroid.
         if (fs < 0) DrawFeature(a, ToPixel(v.s, su), ToPixel(v.s, su), ToPixel(v.s, su), MatchColour(static_cast<int>(matchedTotal + pairs.size() - 1)), pairs.back().label);
         if (fp < 0) DrawFeature(b, ToPixel(v.p, pu), ToPixel(v.p, pu), ToPixel(v.p, pu), MatchColour(static_cast<int>(matchedTotal + pairs.size() - 1)), pairs.back().label);
@@ -523,7 +511,7 @@ void RunColonFlatViews(cli::ModuleContext& ctx) {
   report["curvatureRange"] = {hRange[0], hRange[1]};
   report["pixelsPerUnit"] = ppu;
   report["morphFrames"] = frames;
-  report["registrationMethod"] = regReport.value("method", std::string("unknown"));
+  report["registrationMethod"] = regReport.method;
   report["views3D"] = views3D;
   report["features"] = {{"supine", sFoldsTotal}, {"prone", pFoldsTotal}, {"matched", matchedTotal}, {"found", foundTotal}};
   files.push_back("flatviews.json");

@@ -17,6 +17,7 @@
 #include "IO/ImageIO.h"
 #include "IO/MeshIO.h"
 #include "IO/SegmentFile.h"
+#include "IO/StageReports.h"
 #include "Surface/MeanCurvature.h"
 #include "Surface/MeshTopology.h"
 
@@ -98,6 +99,9 @@ void Run(cli::ModuleContext& ctx) {
                                                  ".vtp is missing (a ColonLandmarks folder holds all five segments)");
   if (!fs::is_regular_file(fs::path(in) / "taeniae.vtp"))
     throw InputError("landmarks folder", in, "taeniae.vtp is missing (ColonLandmarks writes it beside the segments)");
+  // Checked at the door, before the long work: a bad landmarks.json is refused now, not after flattening.
+  const io::LandmarksReport landmarksReport =
+      io::ReadLandmarksReport((fs::path(in) / "landmarks.json").string(), "landmarks report");
   ctx.outputs.PrepareDirectory(out, "output folder");
   ctx.progress.Plan(plan);
 
@@ -287,15 +291,8 @@ void Run(cli::ModuleContext& ctx) {
   report["flippedTriangles"] = flippedTotal;
   // The landmarks' joint flexure choice, handed on: the registration must know when the segments
   // are the alignment's guess rather than both scans' anatomy (issue 20).
-  if (const fs::path lj = fs::path(in) / "landmarks.json"; fs::exists(lj)) {
-    std::ifstream f(lj);
-    const json l = json::parse(f, nullptr, false);
-    if (!l.is_discarded() && l.contains("jointChoice") && l["jointChoice"].is_object()) {
-      const json& j = l["jointChoice"];
-      report["jointChoice"] = {{"pairedWith", j.value("pairedWith", "")}, {"consistent", j.value("consistent", true)},
-                               {"fallback", j.value("fallback", false)}};
-    }
-  }
+  if (const auto& j = landmarksReport.jointChoice)
+    report["jointChoice"] = {{"pairedWith", j->pairedWith}, {"consistent", j->consistent}, {"fallback", j->fallback}};
   {
     const std::string p = ctx.outputs.Stage((fs::path(out) / "flattening.json").string(), "output flattening.json");
     std::ofstream f(p);

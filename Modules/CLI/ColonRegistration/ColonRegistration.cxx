@@ -8,6 +8,7 @@
 #include "IO/MarkupsIO.h"
 #include "IO/MeshIO.h"
 #include "IO/SegmentFile.h"
+#include "IO/StageReports.h"
 #include "Registration/EmbeddedProneMesh.h"
 #include "Registration/FlatLocator.h"
 #include "Registration/RegistrationReliability.h"
@@ -44,7 +45,7 @@ const DataArray& Need(const TriangleMesh& m, const std::string& name, int cols, 
   return it->second;
 }
 
-ScanSegment ReadSegment(const fs::path& dir, int id, const json& report, const std::string& scan) {
+ScanSegment ReadSegment(const fs::path& dir, int id, const io::FlatteningReport& report, const std::string& scan) {
   ScanSegment s;
   const std::string X = kNames[id];
   const std::string path = (dir / ("flat_" + X + ".vtp")).string(), what = scan + " flat mesh " + X;
@@ -57,10 +58,9 @@ ScanSegment ReadSegment(const fs::path& dir, int id, const json& report, const s
   s.input.flat.period = FlatPeriodFromCut(s.input.flat.uv, s.input.flat.position);
   // v runs from the anal end: A's far end is the caecum, R's near end the anus (tips, not flexures).
   s.input.flexureAtEnd = {id != 4, id != 0};
-  if (report.contains("segments") && report["segments"].contains(X)) {
-    const json& j = report["segments"][X];
-    if (j.contains("flatWidth") && j["flatWidth"].is_number()) s.input.flat.period = j["flatWidth"].get<double>();
-    if (j.contains("cut") && j["cut"].is_string()) s.input.cutTaenia = j["cut"].get<std::string>();
+  if (const auto it = report.segments.find(X); it != report.segments.end()) {
+    if (it->second.flatWidth) s.input.flat.period = *it->second.flatWidth;
+    if (it->second.cut) s.input.cutTaenia = *it->second.cut;
   }
   if (!(s.input.flat.period > 0)) throw InputError(what, path, "the width of the flat map is unknown (no flattening.json and no cut copies)");
   if (auto a = s.flat.pointData.find("CenterlineArcLength"); a != s.flat.pointData.end())
@@ -79,19 +79,14 @@ ScanSegment ReadSegment(const fs::path& dir, int id, const json& report, const s
 // its choice (jointChoice, handed on by flattening.json; pairedWith empty when the scan was done
 // alone). Without the record (segments made by other means, e.g. cut from a phantom's truth)
 // nothing is known against them.
-bool FlexuresJoint(const json& report) {
-  if (!report.contains("jointChoice") || !report["jointChoice"].is_object()) return true;
-  const json& j = report["jointChoice"];
-  return !j.value("pairedWith", std::string()).empty() && j.value("consistent", true) && !j.value("fallback", false);
+bool FlexuresJoint(const io::FlatteningReport& report) {
+  if (!report.jointChoice) return true;
+  const io::JointChoice& j = *report.jointChoice;
+  return !j.pairedWith.empty() && j.consistent && !j.fallback;
 }
 
-json ReadReport(const fs::path& dir, const std::string& scan) {
-  const fs::path p = dir / "flattening.json";
-  if (!fs::exists(p)) return json::object();
-  std::ifstream f(p);
-  json j = json::parse(f, nullptr, false);
-  if (j.is_discarded()) throw InputError(scan + " flattening report", p.string(), "is not valid JSON");
-  return j;
+io::FlatteningReport ReadReport(const fs::path& dir, const std::string& scan) {
+  return io::ReadFlatteningReport((dir / "flattening.json").string(), scan + " flattening report");
 }
 
 // Concatenates meshes; arrays present with the same width in every part are kept.
@@ -185,9 +180,9 @@ void Run(cli::ModuleContext& ctx) {
   }
   if (present.empty()) throw InputError("supine flattening folder", sdir, "holds none of flat_A.vtp ... flat_R.vtp");
   plan.emplace_back("Write", 0.1 * plan.front().second);
+  const io::FlatteningReport sreport = ReadReport(sdir, "supine"), preport = ReadReport(pdir, "prone");
   ctx.outputs.PrepareDirectory(out, "output folder");
   ctx.progress.Plan(plan);
-  const json sreport = ReadReport(sdir, "supine"), preport = ReadReport(pdir, "prone");
 
   std::vector<TriangleMesh> supineParts, proneParts;
   std::vector<SegmentRegistration> regs;

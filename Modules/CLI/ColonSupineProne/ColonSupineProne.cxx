@@ -9,6 +9,7 @@
 #include "IO/ImageCheck.h"
 #include "IO/MarkupsIO.h"
 #include "IO/NodeFiles.h"
+#include "IO/StageReports.h"
 #include "Report/PipelineReport.h"
 #include "Report/QualityFlags.h"
 
@@ -259,21 +260,34 @@ void WriteSummaryAndReport(cli::ModuleContext& ctx, const Options& o, const json
                     " quality warning(s); report: " + (fs::path(o.out) / "report.html").string());
 }
 
+// The stage reports --reportOnly reads, checked at the door: each must exist, and be what its
+// reader (IO/StageReports) accepts, so a damaged one is refused naming it instead of leaving a
+// section of the report out.
+void CheckStageReports(const Options& o) {
+  const fs::path out(o.out);
+  for (const char* file : {"landmarks/supine/landmarks.json", "landmarks/prone/landmarks.json",
+                           "flattening/supine/flattening.json", "flattening/prone/flattening.json",
+                           "registration/registration.json"})
+    if (!fs::is_regular_file(out / file))
+      throw InputError("output folder", o.out, std::string("has no ") + file + " (run the stages before --reportOnly)");
+  for (const char* scan : kScans) {
+    io::ReadLandmarksReport((out / "landmarks" / scan / "landmarks.json").string(), std::string(scan) + " landmarks report");
+    io::ReadFlatteningReport((out / "flattening" / scan / "flattening.json").string(), std::string(scan) + " flattening report");
+  }
+  io::ReadRegistrationReport((out / "registration" / "registration.json").string(), "registration report");
+}
+
 // --reportOnly: summary.json and report.html from the stage folders already under the output folder
 // (made by the stage modules run one at a time, e.g. by the cohort workflow, scripts/cohort/).
 // The stage times and results come from --stageRecords; nothing else is run or changed.
-void RunReportOnly(cli::ModuleContext& ctx, const Options& o, const std::string& recordsPath) {
+void BuildReportOnly(cli::ModuleContext& ctx, const Options& o, const std::string& recordsPath) {
   const fs::path out(o.out);
   if (!fs::is_directory(out)) throw InputError("output folder", o.out, "does not exist (--reportOnly reads the stage folders in it)");
   std::map<std::string, std::string> folders;
   for (const char* stage : {"cleansing", "segmentation", "surface", "landmarks", "flattening", "registration",
                             "flatviews", "transfer", "views", "evaluation"})
     if (fs::is_directory(out / stage)) folders[stage] = (out / stage).string();
-  for (const char* file : {"landmarks/supine/landmarks.json", "landmarks/prone/landmarks.json",
-                           "flattening/supine/flattening.json", "flattening/prone/flattening.json",
-                           "registration/registration.json"})
-    if (!fs::is_regular_file(out / file))
-      throw InputError("output folder", o.out, std::string("has no ") + file + " (run the stages before --reportOnly)");
+  CheckStageReports(o);
   json stages = json::array(), notes = json::array();
   if (!recordsPath.empty()) {
     const json records = report::ReadJsonOrNull(recordsPath);
@@ -314,6 +328,17 @@ void RunReportOnly(cli::ModuleContext& ctx, const Options& o, const std::string&
   ctx.progress.Plan({{"report", 0.2}});
   ctx.progress.StartStage("report");
   WriteSummaryAndReport(ctx, o, stages, totalSeconds, folders, notes, findingsTable);
+}
+
+// The report reads many fields of the stage files beyond those IO/StageReports checks; our modules
+// write them, but in --reportOnly a user's folder may hold one edited or damaged by hand, with a
+// field of another type: that is the folder's problem, said in one line, not an internal error.
+void RunReportOnly(cli::ModuleContext& ctx, const Options& o, const std::string& recordsPath) {
+  try {
+    BuildReportOnly(ctx, o, recordsPath);
+  } catch (const json::exception& e) {
+    throw InputError("output folder", o.out, std::string("holds a stage file the report cannot read (") + e.what() + ")");
+  }
 }
 
 void Run(cli::ModuleContext& ctx) {
