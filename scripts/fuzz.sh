@@ -4,7 +4,7 @@
 # process on one core. Prints per target: executions, coverage (cov/ft), duration; writes
 # build/fuzz/fuzz-summary.json. Exits non-zero on any finding (crash, sanitizer report, timeout,
 # out of memory, contract violation); the input is kept in build/fuzz/artifacts/.
-# Usage: bash scripts/fuzz.sh [seconds] [target ...]   (targets: markups imageheaders cameras commandline mesh reports)
+# Usage: bash scripts/fuzz.sh [seconds, 0 = build only] [target ...]   (targets: markups imageheaders cameras commandline mesh reports)
 set -euo pipefail
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 seconds=${1:-10}
@@ -26,6 +26,7 @@ for t in "${targets[@]}"; do
   build_targets+=("${exe[$t]}")
 done
 "${lock[@]}" ninja -C "$build" "${build_targets[@]}" >/dev/null
+[ "$seconds" = 0 ] && exit 0  # 0 seconds: build only (libFuzzer would take 0 as no limit)
 
 mkdir -p "$build/artifacts" "$build/logs"
 summary="$build/fuzz-summary.json"

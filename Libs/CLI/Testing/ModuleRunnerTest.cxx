@@ -1,4 +1,5 @@
 // The run wrapper: --xml, --echo, return parameters, errors, Cancel, all-or-nothing outputs.
+#include "Core/Testing/FreshTempDir.h"
 #include "CLI/ModuleRunner.h"
 #include "CLI/OutputTransaction.h"
 #include "Core/Error.h"
@@ -23,12 +24,7 @@ std::string AllTypesXml() {
   return ss.str();
 }
 
-fs::path TempDir(const std::string& name) {
-  fs::path p = fs::temp_directory_path() / ("colonmap-runner-" + name + "-" + std::to_string(::getpid()));
-  fs::remove_all(p);
-  fs::create_directories(p);
-  return p;
-}
+fs::path TempDir(const std::string& name) { return colonmap::FreshTempDir("runner", name); }
 
 std::string ReadFile(const fs::path& p) {
   std::ifstream in(p);

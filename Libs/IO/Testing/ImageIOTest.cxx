@@ -1,4 +1,5 @@
 // Image reading and writing: the real CT as NIfTI and as DICOM, round trips, bad inputs.
+#include "Core/Testing/FreshTempDir.h"
 #include "Core/Error.h"
 #include "IO/ImageIO.h"
 
@@ -18,12 +19,7 @@ namespace {
 
 const std::string kData = COLONMAP_SHARED_DIR "/data/totalseg-example-ct";
 
-fs::path TempDir(const std::string& name) {
-  fs::path p = fs::temp_directory_path() / ("colonmap-imageio-" + name + "-" + std::to_string(::getpid()));
-  fs::remove_all(p);
-  fs::create_directories(p);
-  return p;
-}
+fs::path TempDir(const std::string& name) { return colonmap::FreshTempDir("imageio", name); }
 
 std::string ErrorOf(const std::string& path) {
   try {

@@ -2,6 +2,7 @@
 // and BINARY, file versions 4.2 and 5.1, many value types, attributes and field data) and from the
 // real atlas surfaces; and on every cut-short or byte-damaged copy, a problem or a consistent
 // polydata, never a crash.
+#include "Core/Testing/FreshTempDir.h"
 #include "IO/LegacyVtkReader.h"
 
 #include <gtest/gtest.h>
@@ -34,12 +35,7 @@ using colonmap::io::ReadLegacyPolyData;
 
 namespace {
 
-fs::path TempDir(const std::string& name) {
-  fs::path p = fs::temp_directory_path() / ("colonmap-legacy-" + name + "-" + std::to_string(::getpid()));
-  fs::remove_all(p);
-  fs::create_directories(p);
-  return p;
-}
+fs::path TempDir(const std::string& name) { return colonmap::FreshTempDir("legacy", name); }
 
 // Points, one vertex, one line, a triangle and a quad; point, cell and field arrays of several types.
 vtkSmartPointer<vtkPolyData> Sample() {

@@ -1,4 +1,5 @@
 // Point lists: schema-valid output, LPS and RAS reading, .fcsv, bad inputs.
+#include "Core/Testing/FreshTempDir.h"
 #include "Core/Error.h"
 #include "IO/MarkupsIO.h"
 
@@ -14,12 +15,7 @@ using namespace colonmap;
 
 namespace {
 
-fs::path TempDir(const std::string& name) {
-  fs::path p = fs::temp_directory_path() / ("colonmap-markups-" + name + "-" + std::to_string(::getpid()));
-  fs::remove_all(p);
-  fs::create_directories(p);
-  return p;
-}
+fs::path TempDir(const std::string& name) { return colonmap::FreshTempDir("markups", name); }
 
 MarkupList Sample() {
   MarkupList list;

@@ -1,4 +1,5 @@
 // Surfaces and polylines: round trips with named arrays, the real GCA surface, bad inputs.
+#include "Core/Testing/FreshTempDir.h"
 #include "Core/Error.h"
 #include "IO/MeshIO.h"
 
@@ -14,12 +15,7 @@ using namespace colonmap;
 
 namespace {
 
-fs::path TempDir(const std::string& name) {
-  fs::path p = fs::temp_directory_path() / ("colonmap-meshio-" + name + "-" + std::to_string(::getpid()));
-  fs::remove_all(p);
-  fs::create_directories(p);
-  return p;
-}
+fs::path TempDir(const std::string& name) { return colonmap::FreshTempDir("meshio", name); }
 
 TriangleMesh Tetrahedron() {
   TriangleMesh m;

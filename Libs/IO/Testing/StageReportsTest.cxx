@@ -1,6 +1,7 @@
 // The stage reports (landmarks.json, flattening.json, registration.json): what the modules write is
 // read back right, absent files and fields give the defaults, and every bad report is refused in
 // one line naming the file and the field.
+#include "Core/Testing/FreshTempDir.h"
 #include "Core/Error.h"
 #include "IO/StageReports.h"
 
@@ -18,12 +19,7 @@ using nlohmann::json;
 
 namespace {
 
-fs::path TempDir(const std::string& name) {
-  fs::path p = fs::temp_directory_path() / ("colonmap-reports-" + name + "-" + std::to_string(::getpid()));
-  fs::remove_all(p);
-  fs::create_directories(p);
-  return p;
-}
+fs::path TempDir(const std::string& name) { return colonmap::FreshTempDir("reports", name); }
 
 std::string Write(const fs::path& dir, const std::string& name, const std::string& text) {
   const fs::path p = dir / name;
