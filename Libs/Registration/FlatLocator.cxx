@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <sstream>
 
 namespace colonmap::registration {
 
@@ -162,6 +163,24 @@ double FlatPeriodFromCut(const Eigen::MatrixXd& uv, const Eigen::MatrixXd& posit
   if (d.empty()) return 0.0;
   std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
   return d[d.size() / 2];
+}
+
+double CheckedFlatPeriod(std::optional<double> reported, const Eigen::MatrixXd& uv, const Eigen::MatrixXd& positions,
+                         const std::string& segment, const std::string& what, const std::string& path) {
+  const double cut = FlatPeriodFromCut(uv, positions);
+  if (!reported) return cut;
+  const double w = *reported;
+  const double span = uv.rows() > 0 ? uv.col(0).maxCoeff() - uv.col(0).minCoeff() : 0.0;
+  const bool fits = cut > 0 ? std::fabs(w - cut) <= 0.01 * cut : span <= 0 || (w <= 2 * span && w >= 0.5 * span);
+  const auto number = [](double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+  };
+  if (!fits)
+    throw InputError(what, path, "gives segment " + segment + " a flat width of " + number(w) + ", but its flat map " +
+                                     (cut > 0 ? "repeats every " + number(cut) : "spans " + number(span)));
+  return w;
 }
 
 }  // namespace colonmap::registration

@@ -7,6 +7,8 @@
 // triangle bounding boxes makes each query O(1) on average. Eigen in and out.
 #include <Eigen/Core>
 
+#include <optional>
+#include <string>
 #include <vector>
 
 namespace colonmap::registration {
@@ -50,5 +52,13 @@ class FlatTriangleLocator {
 // positions, rows of `positions`) lie one period apart in u. Returns the median u difference
 // over such pairs, or 0 when the mesh has no duplicated positions.
 double FlatPeriodFromCut(const Eigen::MatrixXd& uv, const Eigen::MatrixXd& positions);
+
+// A segment's flat width: `reported` (a flattening report's flatWidth) when given, else the cut's
+// period; 0 when neither is known. A reported width the map contradicts is refused (InputError
+// naming `what` and `path`, the report): off by more than 1% from the cut's period, or, without
+// cut copies, more than twice or under half the span of u. A wrong width sizes pictures and
+// wraps the map by the wrong period without a word.
+double CheckedFlatPeriod(std::optional<double> reported, const Eigen::MatrixXd& uv, const Eigen::MatrixXd& positions,
+                         const std::string& segment, const std::string& what, const std::string& path);
 
 }  // namespace colonmap::registration

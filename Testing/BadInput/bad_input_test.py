@@ -579,6 +579,16 @@ try:
     expect_refused("flattening.json with a string for a flat width", "ColonRegistration",
                    [wrong_width, os.path.join(reg, "prone"), out], report,
                    ["'segments.A.flatWidth' is a string, not a number"], [out])
+    # A width of the right type but not the map's own (a hand edit, another segment's report): it
+    # wrapped the map by the wrong period without a word, and sized ColonFlatViews' pictures.
+    other_width = os.path.join(work, "supine-width-not-the-maps")
+    shutil.copytree(os.path.join(reg, "supine"), other_width)
+    report = spoil_report(other_width, "flattening.json",
+                          lambda j: j["segments"]["A"].update(flatWidth=j["segments"]["A"]["flatWidth"] * 1000))
+    out = os.path.join(work, "reg-width-not-the-maps")
+    expect_refused("flattening.json with a flat width its map contradicts", "ColonRegistration",
+                   [other_width, os.path.join(reg, "prone"), out], report,
+                   ["gives segment A a flat width of"], [out])
     no_prone_uv = os.path.join(work, "registration-match-without-proneUV")
     shutil.copytree(os.path.join(reg, "registration"), no_prone_uv)
     report = spoil_report(no_prone_uv, "registration.json",  # read through a missing key before (undefined behaviour)

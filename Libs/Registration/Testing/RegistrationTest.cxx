@@ -1,6 +1,7 @@
 // Unit tests of Libs/Registration on exact answers: point location in a periodic flat strip,
 // the affine rectangle map, the cyclic shift of a shifted image, the Beltrami coefficient of a
 // known affine 3D map, error statistics.
+#include "Core/Error.h"
 #include "Registration/ErrorStatistics.h"
 #include "Registration/FlatLocator.h"
 #include "Registration/RectangleAffine.h"
@@ -83,6 +84,37 @@ TEST(FlatLocator, PeriodFromCutCopies) {
     P.row(i) << std::cos(a), std::sin(a), uv(i, 1);
   }
   EXPECT_NEAR(FlatPeriodFromCut(uv, P), 1.0, 1e-12);
+}
+
+// A flattening report's width must be the map's own: the cut's period within 1%, or without cut
+// copies within a factor 2 of the span of u.
+TEST(FlatLocator, ReportedWidthCheckedAgainstTheMap) {
+  Eigen::MatrixXd uv;
+  Eigen::MatrixXi F;
+  Strip(8, 4, 1.0, uv, F);
+  Eigen::MatrixXd P(uv.rows(), 3), apart(uv.rows(), 3);
+  for (Eigen::Index i = 0; i < uv.rows(); ++i) {
+    const double a = 2 * M_PI * std::fmod(uv(i, 0), 1.0);
+    P.row(i) << std::cos(a), std::sin(a), uv(i, 1);
+    apart.row(i) << uv(i, 0), uv(i, 1), 0.0;  // no two points share a position: no cut copies
+  }
+  const auto width = [&](std::optional<double> w, const Eigen::MatrixXd& positions) {
+    return CheckedFlatPeriod(w, uv, positions, "A", "supine flattening report", "f.json");
+  };
+  EXPECT_NEAR(width(std::nullopt, P), 1.0, 1e-12);
+  EXPECT_EQ(width(1.005, P), 1.005);
+  EXPECT_EQ(width(std::nullopt, apart), 0.0);
+  EXPECT_EQ(width(1.8, apart), 1.8);
+  EXPECT_THROW(width(1.05, P), Error);
+  EXPECT_THROW(width(1e4, apart), Error);
+  EXPECT_THROW(width(0.4, apart), Error);
+  try {
+    width(3.0, P);
+    ADD_FAILURE() << "a width three times the cut's period was taken";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("supine flattening report 'f.json': gives segment A a flat width of 3"),
+              std::string::npos) << e.what();
+  }
 }
 
 TEST(RectangleAffine, MapsEndsToEndsAndInverts) {

@@ -55,9 +55,12 @@ struct Side {
   FlatPixelHits hits;
 };
 
-double PeriodOf(const io::FlatteningReport& report, const std::string& X, const Eigen::MatrixXd& uv, const Eigen::MatrixXd& position) {
-  if (const auto it = report.segments.find(X); it != report.segments.end() && it->second.flatWidth) return *it->second.flatWidth;
-  return registration::FlatPeriodFromCut(uv, position);
+double PeriodOf(const io::FlatteningReport& report, const std::string& X, const Eigen::MatrixXd& uv, const Eigen::MatrixXd& position,
+                const fs::path& flatDir, const std::string& scan) {
+  std::optional<double> reported;
+  if (const auto it = report.segments.find(X); it != report.segments.end()) reported = it->second.flatWidth;
+  return registration::CheckedFlatPeriod(reported, uv, position, X, scan + " flattening report",
+                                         (flatDir / "flattening.json").string());
 }
 
 Side MakeSide(const TriangleMesh& whole, const std::string& wholePath, int id, const std::string& ownUV, const std::string& otherUV,
@@ -68,7 +71,7 @@ Side MakeSide(const TriangleMesh& whole, const std::string& wholePath, int id, c
   if (s.mesh.F.rows() == 0) throw InputError(scan + " registration mesh", wholePath, "segment " + X + " has no faces");
   s.uv = s.mesh.PointRows(PointArray(whole, ownUV, 2, scan + " registration mesh '" + wholePath + "'"));
   s.otherUV = s.mesh.PointRows(PointArray(whole, otherUV, 2, scan + " registration mesh '" + wholePath + "'"));
-  s.period = PeriodOf(report, X, s.uv, s.mesh.PointRows(whole.V));
+  s.period = PeriodOf(report, X, s.uv, s.mesh.PointRows(whole.V), flatDir, scan);
   if (!(s.period > 0)) throw InputError(scan + " flattening folder", flatDir.string(), "the flat width of segment " + X + " is unknown");
   s.height = s.uv.col(1).maxCoeff();
   if (!(s.height > 0)) throw InputError(scan + " registration mesh", wholePath, "segment " + X + " has no flat length");

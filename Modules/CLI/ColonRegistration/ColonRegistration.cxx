@@ -55,13 +55,15 @@ ScanSegment ReadSegment(const fs::path& dir, int id, const io::FlatteningReport&
   s.input.flat.uv = Need(s.flat, "FlatUV", 2, what, path).values;
   s.input.flat.position = Need(s.flat, "Position3D", 3, what, path).values;
   s.input.flat.F = s.flat.F;
-  s.input.flat.period = FlatPeriodFromCut(s.input.flat.uv, s.input.flat.position);
   // v runs from the anal end: A's far end is the caecum, R's near end the anus (tips, not flexures).
   s.input.flexureAtEnd = {id != 4, id != 0};
+  std::optional<double> reportedWidth;
   if (const auto it = report.segments.find(X); it != report.segments.end()) {
-    if (it->second.flatWidth) s.input.flat.period = *it->second.flatWidth;
+    reportedWidth = it->second.flatWidth;
     if (it->second.cut) s.input.cutTaenia = *it->second.cut;
   }
+  s.input.flat.period = CheckedFlatPeriod(reportedWidth, s.input.flat.uv, s.input.flat.position, X,
+                                          scan + " flattening report", (dir / "flattening.json").string());
   if (!(s.input.flat.period > 0)) throw InputError(what, path, "the width of the flat map is unknown (no flattening.json and no cut copies)");
   if (auto a = s.flat.pointData.find("CenterlineArcLength"); a != s.flat.pointData.end())
     s.input.arcLength = a->second.values.col(0);
