@@ -67,13 +67,17 @@ def run(cmd):
 
 
 def run_with_peak(cmd):
-    """Like run(), with the peak memory of this one process from GNU time when available."""
+    """Like run(), with the peak memory and the CPU seconds (user + system, every thread) of this
+    one process from GNU time when available; coresBusy = CPU / wall."""
     if shutil.which("/usr/bin/time") is None:
         return run(cmd)
     with tempfile.NamedTemporaryFile("r", suffix=".txt") as t:
-        result = run(["/usr/bin/time", "-f", "%M", "-o", t.name] + cmd)
+        result = run(["/usr/bin/time", "-f", "%M %U %S", "-o", t.name] + cmd)
         try:
-            result["peakMemoryMB"] = round(int(open(t.name).read().split()[-1]) / 1024, 1)
+            peak_kb, user, system = open(t.name).read().split()[-3:]
+            result["peakMemoryMB"] = round(int(peak_kb) / 1024, 1)
+            result["cpuSeconds"] = round(float(user) + float(system), 2)
+            result["coresBusy"] = round(result["cpuSeconds"] / max(result["seconds"], 1e-3), 2)
         except (ValueError, IndexError):
             pass
     return result
@@ -96,9 +100,14 @@ def pipeline(cli, phantom, out):
     summary = json.load(open(os.path.join(out, "summary.json")))
     errors = json.load(open(os.path.join(out, "evaluation", "errors.json")))
     stages = {s["name"]: round(s["seconds"], 3) for s in summary["stages"]}
+    # Issue 22: how many of the cores each stage kept busy (CPU seconds of the whole process over
+    # the stage's wall seconds; 2 = both cores of the benchmark machine).
+    cpu = {s["name"]: {"seconds": round(s["seconds"], 3), "cpuSeconds": round(s["cpuSeconds"], 3),
+                       "coresBusy": round(s["cpuSeconds"] / max(s["seconds"], 1e-3), 2)}
+           for s in summary["stages"] if "cpuSeconds" in s}
     ours = {"flattening": (stages.get("flattening supine", 0) + stages.get("flattening prone", 0)) / 10,
             "registration": stages.get("registration", 0) / 5}
-    return {"whole": whole, "stages": stages, "quality": summary["quality"],
+    return {"whole": whole, "stages": stages, "stageCpu": cpu, "quality": summary["quality"],
             "error3D": errors["overall"]["error3D"], "polyps": errors.get("polyps", {}).get("error3D"),
             "secondsPerSegment": {k: {"ours": round(v, 3), "paper": PAPER_SECONDS_PER_SEGMENT[k]}
                                   for k, v in ours.items()}}

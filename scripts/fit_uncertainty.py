@@ -2,14 +2,16 @@
 """Fits the registration uncertainty model (Libs/Registration/RegistrationUncertainty.h) on pairs with
 ground truth and says how it holds on pairs it was not fitted on (issue 20). A benchmark, not a test.
 
-    fit_uncertainty.py --pool NAME=CACHE[:RUNS] [--pool ...] [--output fit.json]
+    fit_uncertainty.py --pool NAME=CACHE[:RUNS] [--pool ...] [--test NAME=CACHE[:RUNS] ...] [--output fit.json]
 
 Each pool is a registration_seeds.py cache (CACHE/seed<N>/RUNS/harmonic/{errors.json,registration.json} or,
 with its --work CACHE/RUNS, CACHE/RUNS/seed<N>/harmonic; RUNS defaults to "runs"), e.g. phantom0.5=/tmp/ph3 gca=/tmp/rc-gca-00020:runs2. The model is
-log sigma = c . x with x = UncertaintyFeatures (the same 12 inputs as the C++), fitted by least squares
-of log(max(true error, 0.2 mm)) on the evaluation wall points and polyps, coefficients but the intercept
-kept >= 0; the 90% bound is sigma * exp(q90) with
-q90 the 90% quantile of the fit's log residuals.
+log sigma = c . x with x = UncertaintyFeatures (the same 13 inputs as the C++), fitted by least squares
+of log(max(true error, 0.2 mm)) on the evaluation wall points and polyps (polyps weighted by
+--polyp-weight), coefficients but the intercept kept >= 0. The 90% bound: with --bound q90,
+sigma * exp(q90), q90 the 90% quantile of the fit's log residuals; with --bound quantile (the
+model in use), log bound90 = b . x by linear quantile regression (tau 0.9) of the same, never below
+sigma. Used now: --bound quantile --polyp-weight 25 (docs/accuracy.md).
 
 Held back, two ways (no pair is ever in the fit that reports on it):
   seeds:   fit on the odd seeds of every pool, report on the even ones, and the other way round;
@@ -18,7 +20,9 @@ Per held-back pair: coverage of the 90% bound on wall points; pooled: polyps' co
 bound with the true error, and of the points more than 20 mm off the share with a bound above 20 mm or
 reliable=false (reliable = the registration's own Trusted flag and the held-back bound within
 --reliable-bound, as ColonRegistration --reliableBoundMm makes it).
-The final coefficients are fitted on all pairs; paste them into RegistrationUncertainty.cxx.
+The final coefficients are fitted on all --pool pairs; paste them into RegistrationUncertainty.cxx.
+--test pools are never fitted on, not even by the final fit: the final model's figures on them are
+the plainest held-back check (e.g. the tube at another deformation and other seeds).
 """
 import argparse
 import glob
@@ -29,8 +33,9 @@ import re
 import statistics
 
 FEATURES = ["1", "log1p(loo)", "log1p(near/10)", "log1p(corr)", "log K", "1-pathCorrelation", "droppedFraction",
-            "1/(1+matchesPer100mm)", "exp(-flex/30)", "1-curvatureAgreement", "lengthMismatch", "curv"]
-SOURCE = {"phantom": "tube"}  # pools whose name starts with "phantom" are one source
+            "1/(1+matchesPer100mm)", "exp(-flex/30)", "1-curvatureAgreement", "lengthMismatch", "curv", "untrusted"]
+SOURCE = {"phantom": "tube"}
+POLYP_WEIGHT = 1.0  # --polyp-weight  # pools whose name starts with "phantom" are one source
 
 
 def features(p, seg):
@@ -40,7 +45,8 @@ def features(p, seg):
             math.log1p(max(0.0, p["UncertaintyCorrectionMm"])), math.log(K), 1.0 - seg["pathCorrelation"],
             seg["droppedFraction"], 1.0 / (1.0 + seg["matchesPer100mm"]),
             math.exp(-max(0.0, p.get("UncertaintyFlexureMm", 1000.0)) / 30.0), 1.0 - seg.get("curvatureAgreement", 1.0),
-            seg.get("lengthMismatch", 0.0), min(5.0, max(0.0, p.get("UncertaintyCurvature", 0.0)))]
+            seg.get("lengthMismatch", 0.0), min(5.0, max(0.0, p.get("UncertaintyCurvature", 0.0))),
+            0.0 if p.get("trusted", p.get("reliable", True)) else 1.0]
 
 
 def load(pools):
@@ -94,25 +100,29 @@ def quantile(v, q):
     return v[min(len(v) - 1, max(0, int(math.ceil(q * len(v))) - 1))]
 
 
-def fit(points, ridge=1e-3):
-    """Least squares on wall points and polyps (the findings a reader carries), every coefficient but
-    the intercept kept >= 0 (each input is built so that more of it means less evidence: a signal
-    must never narrow the bound), by dropping the most negative one and refitting."""
-    rows = [p for p in points]
-    n = len(FEATURES)
+def nonnegative_wls(X, y, w, ridge=1e-3):
+    """Weighted least squares, every coefficient but the intercept kept >= 0 (each input is built so
+    that more of it means less evidence: a signal must never narrow the bound), by dropping the
+    most negative one and refitting."""
+    n = len(X[0])
     active = list(range(n))
+    total = sum(w)
     while True:
         A = [[0.0] * len(active) for _ in active]
         b = [0.0] * len(active)
-        for p in rows:
-            y = math.log(max(p["error"], 0.2))
-            x = [p["x"][i] for i in active]
+        for xr, yi, wi in zip(X, y, w):
+            x = [xr[i] for i in active]
             for i in range(len(active)):
-                b[i] += x[i] * y
-                for j in range(len(active)):
-                    A[i][j] += x[i] * x[j]
+                wx = wi * x[i]
+                b[i] += wx * yi
+                Ai = A[i]
+                for j in range(i, len(active)):
+                    Ai[j] += wx * x[j]
+        for i in range(len(active)):
+            for j in range(i):
+                A[i][j] = A[j][i]
         for i in range(1, len(active)):
-            A[i][i] += ridge * len(rows)
+            A[i][i] += ridge * total
         sol = solve(A, b)
         worst = min(range(1, len(active)), key=lambda i: sol[i], default=None)
         if worst is None or sol[worst] >= 0.0:
@@ -121,13 +131,45 @@ def fit(points, ridge=1e-3):
     c = [0.0] * n
     for i, v in zip(active, sol):
         c[i] = v
-    residuals = [math.log(max(p["error"], 0.2)) - sum(ci * xi for ci, xi in zip(c, p["x"])) for p in rows]
-    return {"coefficients": c, "q90": quantile(residuals, 0.9), "points": len(rows)}
+    return c
+
+
+def target(p):
+    return math.log(max(p["error"], 0.2))
+
+
+def fit(points, bound_model="q90", tau=0.9, iterations=40):
+    """The median model: least squares of log(max(error, 0.2 mm)) on wall points and polyps (the
+    findings a reader carries). The bound: "q90" = the median times exp(the 90% quantile of the log
+    residuals), one factor for every point; "quantile" = a model of its own for the 90% quantile of
+    the log error (linear quantile regression by iteratively reweighted least squares, the same
+    inputs and signs), so that inputs that spread the errors more than they raise their median
+    widen the bound more."""
+    X = [p["x"] for p in points]
+    y = [target(p) for p in points]
+    # Polyps are few (about 2% of the points) and sit where the wall bends: weighted up so that
+    # the bound holds for them too, not only for the wall around them.
+    pw = [POLYP_WEIGHT if p["polyp"] else 1.0 for p in points]
+    c = nonnegative_wls(X, y, pw)
+    residuals = [yi - sum(ci * xi for ci, xi in zip(c, xr)) for xr, yi in zip(X, y)]
+    model = {"coefficients": c, "q90": quantile(residuals, 0.9), "points": len(points)}
+    if bound_model == "quantile":
+        d = list(c)
+        d[0] += model["q90"]
+        for _ in range(iterations):
+            r = [yi - sum(di * xi for di, xi in zip(d, xr)) for xr, yi in zip(X, y)]
+            w = [wi * (tau if ri > 0 else 1.0 - tau) / max(abs(ri), 0.02) for ri, wi in zip(r, pw)]
+            d = nonnegative_wls(X, y, w, ridge=1e-4)
+        model["bound"] = d
+    return model
 
 
 def bound(model, p):
-    median = math.exp(sum(ci * xi for ci, xi in zip(model["coefficients"], p["x"])))
-    b90 = median * math.exp(model["q90"])
+    if "bound" in model:  # never below the median (RegistrationUncertainty.cxx)
+        b90 = math.exp(max(sum(di * xi for di, xi in zip(model["bound"], p["x"])),
+                           sum(ci * xi for ci, xi in zip(model["coefficients"], p["x"]))))
+    else:
+        b90 = math.exp(sum(ci * xi for ci, xi in zip(model["coefficients"], p["x"])) + model["q90"])
     return math.sqrt(b90 * b90 + 0.25 * p["offset"] ** 2)  # PointTransfer's re-attachment term
 
 
@@ -171,33 +213,54 @@ def report(held):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--pool", action="append", required=True, help="NAME=CACHE[:RUNS]")
+    ap.add_argument("--test", action="append", default=[],
+                    help="NAME=CACHE[:RUNS] pairs never fitted on (not even by the final fit): reported with the final model")
     ap.add_argument("--output", default=None)
     ap.add_argument("--reliable-bound", type=float, default=10.0,
                     help="ColonRegistration --reliableBoundMm: reliable = trusted and bound <= this (mm)")
+    ap.add_argument("--bound", choices=("q90", "quantile"), default="q90",
+                    help="the bound's model: the median's times one factor, or a quantile regression of its own")
+    ap.add_argument("--drop", default="", help="inputs left out of the model, comma-separated names of FEATURES")
+    ap.add_argument("--polyp-weight", type=float, default=1.0, help="weight of a polyp against a wall point in the fits")
     a = ap.parse_args()
+    global POLYP_WEIGHT
+    POLYP_WEIGHT = a.polyp_weight
     points = load([tuple(s.split("=", 1)) for s in a.pool])
+    tests = load([tuple(s.split("=", 1)) for s in a.test])
+    for name in filter(None, a.drop.split(",")):
+        i = FEATURES.index(name)
+        for p in points + tests:
+            p["x"][i] = 0.0
     out = {"features": FEATURES, "pools": a.pool}
     # Held back by seed parity.
     held = []
     for parity in (1, 0):
-        m = fit([p for p in points if p["seed"] % 2 == parity])
+        m = fit([p for p in points if p["seed"] % 2 == parity], a.bound)
         held += [held_back(m, p, a.reliable_bound) for p in points if p["seed"] % 2 != parity]
     out["heldBackSeeds"] = report(held)
     # Held back by source.
     out["heldBackSources"] = {}
     for s in sorted({p["source"] for p in points}):
-        m = fit([p for p in points if p["source"] != s])
+        rest = [p for p in points if p["source"] != s]
+        if not rest:
+            continue
+        m = fit(rest, a.bound)
         out["heldBackSources"][s] = report([held_back(m, p, a.reliable_bound) for p in points if p["source"] == s])
     # The current model, as the registration wrote it (for comparison).
     out["asWritten"] = report([(p, p["bound"], p["reliable"]) for p in points])
-    final = fit(points)
+    final = fit(points, a.bound)
     out["final"] = {"coefficients": [round(c, 4) for c in final["coefficients"]], "q90": round(final["q90"], 4),
+                    "bound": [round(d, 4) for d in final["bound"]] if "bound" in final else None,
                     "points": final["points"],
                     "onItsOwnFit": report([held_back(final, p, a.reliable_bound) for p in points])}
+    if tests:
+        out["testPairs"] = report([held_back(final, p, a.reliable_bound) for p in tests])
     text = json.dumps(out, indent=1)
     if a.output:
         open(a.output, "w").write(text + "\n")
-    for k in ("heldBackSeeds", "asWritten"):
+    for k in ("heldBackSeeds", "asWritten", "testPairs"):
+        if k not in out:
+            continue
         r = out[k]
         print(f"{k}: pairs in 85-95% {r['pairsWithin85to95']}/{r['pairs']} (min {r['coverageMin']}, max {r['coverageMax']}), "
               f"wall {r['wallCoverage']}, polyps {r['polypCoverage']}, r {r['pearson']}, "
@@ -209,6 +272,8 @@ def main():
               f">20 warned {r['above20mmWarned']}/{r['above20mm']}, unreliable {r['unreliableFraction']}")
     print("final: constexpr double kC[kUncertaintyFeatures] = {" + ", ".join(f"{c:.4f}" for c in out["final"]["coefficients"]) +
           "};  kLogQ90 = " + f"{out['final']['q90']:.4f}")
+    if out["final"]["bound"]:
+        print("final: constexpr double kB[kUncertaintyFeatures] = {" + ", ".join(f"{d:.4f}" for d in out["final"]["bound"]) + "};")
 
 
 if __name__ == "__main__":

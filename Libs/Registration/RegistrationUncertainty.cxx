@@ -12,15 +12,17 @@ namespace colonmap::registration {
 
 namespace {
 
-// The model's coefficients, in the order of UncertaintyFeatures, and the 90% quantile of the
-// fit's log residuals. Written by scripts/fit_uncertainty.py (least squares of
-// log(max(true error, 0.2 mm)), coefficients >= 0 but the intercept) on 42 pairs (2026-12-02): the
-// tube phantom at deformation 0.5 (seeds 1-10) and 1.0 (seeds 1-8), real-colon pairs of GCA 00020,
-// HuBMAP VHM and VHF (seeds 1-8 each, 1 mm); 8400 wall points and 172 polyps. The fewer-matches
-// and length-ratio inputs came out at 0 (the distance to a match and RegistrationReliability.h
-// carry them). docs/accuracy.md gives the held-back figures.
-constexpr double kC[kUncertaintyFeatures] = {-1.6194, 0.2515, 0.6949, 0.1428, 0.0862, 0.8235, 0.0922, 0.0000, 0.6473, 0.5447, 0.0000, 0.0889};
-constexpr double kLogQ90 = 1.0431;
+// The models' coefficients, in the order of UncertaintyFeatures: kC the median (least squares of
+// log(max(true error, 0.2 mm))), kB the 90% bound (linear quantile regression of the same, tau 0.9);
+// every coefficient but the intercept >= 0, polyps weighted 25 to 1 against wall points (they are
+// about 2% of the points). Written by scripts/fit_uncertainty.py --bound quantile --polyp-weight 25
+// on 42 pairs (2026-12-05, harmonic method, surfaces from our own CT pipeline): the tube phantom at
+// deformation 0.5 (seeds 1-10) and 1.0 (seeds 1-8), clinical spacing; real-colon pairs of GCA
+// 00020, HuBMAP VHM and VHF (seeds 1-8 each, 1 mm); 8400 wall points and 172 polyps. Inputs at 0
+// came out so (RegistrationReliability.h carries those signals). docs/accuracy.md gives the
+// held-back figures.
+constexpr double kC[kUncertaintyFeatures] = {-1.6973, 0.2798, 0.7363, 0.2582, 0.0000, 0.6320, 0.0000, 0.0000, 0.3160, 0.5841, 0.0000, 0.1588, 0.5478};
+constexpr double kB[kUncertaintyFeatures] = {-0.2761, 0.1679, 0.8146, 0.2186, 0.0447, 0.6911, 0.0000, 0.0000, 0.5321, 0.0919, 0.0000, 0.1127, 0.5064};
 
 }  // namespace
 
@@ -30,7 +32,7 @@ Eigen::Matrix<double, kUncertaintyFeatures, 1> UncertaintyFeatures(const PointEv
   x << 1.0, std::log1p(std::max(0.0, p.loo)), std::log1p(std::max(0.0, p.nearMm) / 10.0),
       std::log1p(std::max(0.0, p.correctionMm)), std::log(K), 1.0 - s.pathCorrelation, s.droppedFraction,
       1.0 / (1.0 + s.matchesPer100mm), std::exp(-std::max(0.0, p.flexureMm) / 30.0), 1.0 - s.curvatureAgreement,
-      s.lengthMismatch, std::clamp(p.curvature, 0.0, 5.0);
+      s.lengthMismatch, std::clamp(p.curvature, 0.0, 5.0), p.trusted ? 0.0 : 1.0;
   return x;
 }
 
@@ -39,7 +41,28 @@ double UncertaintyMedian(const PointEvidence& p, const SegmentEvidence& s) {
   return std::exp(c.dot(UncertaintyFeatures(p, s)));
 }
 
-double UncertaintyBound90(double median) { return median * std::exp(kLogQ90); }
+double UncertaintyBound90(const PointEvidence& p, const SegmentEvidence& s) {
+  const Eigen::Map<const Eigen::Matrix<double, kUncertaintyFeatures, 1>> b(kB);
+  // Two separately fitted linear models can cross far from the data: never below the median.
+  return std::max(std::exp(b.dot(UncertaintyFeatures(p, s))), UncertaintyMedian(p, s));
+}
+
+namespace {
+
+PointEvidence EvidenceAt(const UncertaintyComponents& c, Eigen::Index i, bool trusted) {
+  return {c.loo(i), c.nearMm(i), c.correctionMm(i), c.dilatation(i), c.flexureMm(i), c.curvature(i), trusted};
+}
+
+}  // namespace
+
+void ApplyTrust(VertexUncertainty& u, const Eigen::VectorXd& trusted) {
+  for (Eigen::Index i = 0; i < trusted.size() && i < u.median.size(); ++i)
+    if (trusted(i) < 0.5) {
+      const PointEvidence p = EvidenceAt(u.components, i, false);
+      u.median(i) = UncertaintyMedian(p, u.segment);
+      u.bound90(i) = UncertaintyBound90(p, u.segment);
+    }
+}
 
 double MmPerFlatUnit(const FlatSegment& flat) {
   const double area3 = surface::MixedVertexAreas(flat.position, flat.F).sum();
@@ -158,9 +181,9 @@ VertexUncertainty EstimateUncertainty(const FlatSegment& flat, const Eigen::Matr
   out.median.resize(n);
   out.bound90.resize(n);
   for (Eigen::Index i = 0; i < n; ++i) {
-    out.median(i) = UncertaintyMedian({c.loo(i), c.nearMm(i), c.correctionMm(i), c.dilatation(i), c.flexureMm(i), c.curvature(i)},
-                                      evidence);
-    out.bound90(i) = UncertaintyBound90(out.median(i));
+    const PointEvidence p = EvidenceAt(c, i, true);
+    out.median(i) = UncertaintyMedian(p, evidence);
+    out.bound90(i) = UncertaintyBound90(p, evidence);
   }
   return out;
 }

@@ -25,12 +25,17 @@
 //             of matches the one-to-one guard dropped, matches per 100 mm of the segment, 1 - the
 //             curvature images' correlation at their best shift, |log| of the segment's length
 //             ratio between the scans.
-// Combined by a fixed log-linear model (UncertaintyFeatures; coefficients in
-// RegistrationUncertainty.cxx, fitted by scripts/fit_uncertainty.py on phantom and real-colon
+//   untrusted: 1 where RegistrationReliability.h does not trust the point (its segment rests on
+//             nothing the scans share, or it lies near a suspect flexure), else 0. Known only
+//             once every segment is registered: ApplyTrust sets it (issue 20: a fallback or a
+//             mis-paired segment must widen the bound, not only mark the point).
+// Combined by two fixed log-linear models of the same inputs (UncertaintyFeatures; coefficients
+// in RegistrationUncertainty.cxx, fitted by scripts/fit_uncertainty.py on phantom and real-colon
 // pairs: docs/accuracy.md gives the data, the fit and the held-back figures):
-//   log sigma(x) = c . UncertaintyFeatures(x),
-// sigma the predicted median error; the 90% bound is sigma * exp(q90), q90 the 90% quantile of
-// the fit's log residuals (uncertainty90). Eigen in and out.
+//   log sigma(x) = c . UncertaintyFeatures(x),  sigma the predicted median error (least squares);
+//   log bound90(x) = b . UncertaintyFeatures(x),  the 90% bound (linear quantile regression), so
+// that an input which spreads the errors more than it raises their median widens the bound
+// more (one factor on sigma for every point held on some pairs and not on others). Eigen in and out.
 #include "Registration/SurfaceMap.h"
 
 #include <Eigen/Core>
@@ -68,6 +73,7 @@ struct UncertaintyComponents {
 // One point's inputs (the per-vertex components at one vertex).
 struct PointEvidence {
   double loo = 0.0, nearMm = 0.0, correctionMm = 0.0, dilatation = 1.0, flexureMm = kNoFlexureMm, curvature = 0.0;
+  bool trusted = true;
 };
 
 struct VertexUncertainty {
@@ -93,12 +99,16 @@ VertexUncertainty EstimateUncertainty(const FlatSegment& flat, const Eigen::Matr
 // The model's inputs at one point, in the order of its coefficients (1 first): 1, log(1 + loo),
 // log(1 + near / 10 mm), log(1 + corr), log K (K >= 1, +inf as 10), 1 - pathCorrelation,
 // droppedFraction, 1 / (1 + matchesPer100mm), exp(-flex / 30 mm), 1 - curvatureAgreement,
-// lengthMismatch, curv. scripts/fit_uncertainty.py computes the same.
-constexpr int kUncertaintyFeatures = 12;
+// lengthMismatch, curv, untrusted. scripts/fit_uncertainty.py computes the same.
+constexpr int kUncertaintyFeatures = 13;
 Eigen::Matrix<double, kUncertaintyFeatures, 1> UncertaintyFeatures(const PointEvidence& point, const SegmentEvidence& segment);
 
 // The model alone (for tests and for documenting it): sigma from the components of one point.
 double UncertaintyMedian(const PointEvidence& point, const SegmentEvidence& segment);
-double UncertaintyBound90(double median);
+double UncertaintyBound90(const PointEvidence& point, const SegmentEvidence& segment);
+
+// Recomputes median and bound90 where trusted (per vertex, 0/1) is 0: the model's untrusted input
+// (EstimateUncertainty assumes every point trusted).
+void ApplyTrust(VertexUncertainty& uncertainty, const Eigen::VectorXd& trusted);
 
 }  // namespace colonmap::registration

@@ -157,7 +157,8 @@ TEST(RegistrationUncertainty, GrowsAwayFromTheMatchesAndNearAnInconsistentOne) {
   EXPECT_NEAR(smooth.components.nearMm(atMatch), 0.0, 1e-9);
   EXPECT_NEAR(smooth.components.nearMm(far), 125.0, 1.5);
   EXPECT_GT(smooth.median(far), smooth.median(atMatch));
-  EXPECT_NEAR(smooth.bound90(far) / smooth.median(far), UncertaintyBound90(1.0), 1e-12);
+  EXPECT_GT(smooth.bound90(far), smooth.bound90(atMatch));
+  EXPECT_TRUE((smooth.bound90.array() >= smooth.median.array()).all());  // a 90% bound is never below the median
   // One constraint disagreeing with its neighbours by 0.05 (5 mm): its leave-one-out residual is
   // about 5 mm (shared, by the weighting, with its neighbours), and the uncertainty there rises.
   cs[5].displacement = {0.06, 0.0};

@@ -11,6 +11,22 @@
 
 using namespace colonmap::registration;
 
+namespace {
+
+// A 1 x 2 strip on a cylinder of circumference 100 mm: 200 mm long, v from 0 to 2, nu x nv
+// quads; no harmonic correction, no dilatation, no matches, so the inputs come from the segment
+// evidence and the curvature alone.
+struct Strip {
+  static constexpr int nu = 20, nv = 40;
+  FlatSegment s = colonmap::registration::testing::CylinderSegment(nu, nv, 2.0);
+  VertexUncertainty Estimate(const SegmentEvidence& e, const Eigen::VectorXd& meanCurvature = Eigen::VectorXd()) const {
+    return EstimateUncertainty(s, Eigen::MatrixXd::Zero(s.uv.rows(), 2), Eigen::VectorXd::Ones(s.F.rows()), {}, e,
+                               meanCurvature);
+  }
+};
+
+}  // namespace
+
 TEST(RegistrationReliability, SegmentWithoutSharedEvidenceIsUntrusted) {
   SegmentEvidence e;
   e.matchesPer100mm = 1.5;
@@ -31,14 +47,12 @@ TEST(RegistrationReliability, SegmentWithoutSharedEvidenceIsUntrusted) {
 }
 
 TEST(RegistrationReliability, FlexureEndDistancesAndSuspectEnds) {
-  // A 1 x 2 strip on a cylinder of circumference 100 mm: 200 mm long, v from 0 to 2.
-  const int nu = 20, nv = 40;
-  const FlatSegment s = colonmap::registration::testing::CylinderSegment(nu, nv, 2.0);
-  const Eigen::VectorXd K = Eigen::VectorXd::Ones(s.F.rows());
-  const Eigen::MatrixXd h = Eigen::MatrixXd::Zero(s.uv.rows(), 2);
+  const Strip strip;
+  const FlatSegment& s = strip.s;
+  const int nu = Strip::nu, nv = Strip::nv;
   SegmentEvidence e;
   e.flexureAtEnd = {false, true};  // a tip at v = 0, a flexure at v = 2 (like segment R)
-  const VertexUncertainty U = EstimateUncertainty(s, h, K, {}, e);
+  const VertexUncertainty U = strip.Estimate(e);
   const int bottom = 0, top = nv * (nu + 1), middle = (nv / 2) * (nu + 1);
   EXPECT_NEAR(FlatLengthMm(s), 200.0, 2.0);
   EXPECT_NEAR(U.components.endMm[0](top), 200.0, 2.0);
@@ -48,7 +62,7 @@ TEST(RegistrationReliability, FlexureEndDistancesAndSuspectEnds) {
   EXPECT_GT(U.median(top), U.median(middle)) << "the model must widen the bound near a flexure";
   // No flexure end at all: the constant.
   e.flexureAtEnd = {false, false};
-  EXPECT_EQ(EstimateUncertainty(s, h, K, {}, e).components.flexureMm(middle), kNoFlexureMm);
+  EXPECT_EQ(strip.Estimate(e).components.flexureMm(middle), kNoFlexureMm);
 
   // Reliability: a suspect v-max end makes the last 60 mm unreliable, the rest stays reliable.
   const Eigen::VectorXd r = TrustedVertices(U.components, true, {false, true});
@@ -65,19 +79,50 @@ TEST(RegistrationReliability, FlexureEndDistancesAndSuspectEnds) {
 
 TEST(RegistrationUncertainty, CurvatureWidensTheBoundOnABump) {
   // Mean curvature 0.3 /mm (a polyp of about 3 mm radius) on a patch of rows, 0.02 elsewhere.
-  const int nu = 20, nv = 40;
-  const FlatSegment s = colonmap::registration::testing::CylinderSegment(nu, nv, 2.0);
-  const Eigen::VectorXd K = Eigen::VectorXd::Ones(s.F.rows());
-  const Eigen::MatrixXd h = Eigen::MatrixXd::Zero(s.uv.rows(), 2);
-  Eigen::VectorXd H = Eigen::VectorXd::Constant(s.uv.rows(), 0.02);
+  const Strip strip;
+  const int nu = Strip::nu;
+  Eigen::VectorXd H = Eigen::VectorXd::Constant(strip.s.uv.rows(), 0.02);
   for (int row = 18; row <= 22; ++row)
     for (int col = 8; col <= 12; ++col) H(row * (nu + 1) + col) = 0.3;
-  const VertexUncertainty U = EstimateUncertainty(s, h, K, {}, SegmentEvidence{}, H);
+  const VertexUncertainty U = strip.Estimate(SegmentEvidence{}, H);
   const int bump = 20 * (nu + 1) + 10, flat = 5 * (nu + 1) + 10;
   EXPECT_NEAR(U.components.curvature(flat), 0.2, 1e-9);  // 10 mm x 0.02 /mm
   EXPECT_GT(U.components.curvature(bump), 2.0);          // smoothed over two rings, still high
   EXPECT_LE(U.components.curvature.maxCoeff(), 5.0);
   EXPECT_GT(U.median(bump), U.median(flat));
   // Without curvature the input is 0 everywhere.
-  EXPECT_EQ(EstimateUncertainty(s, h, K, {}, SegmentEvidence{}).components.curvature.maxCoeff(), 0.0);
+  EXPECT_EQ(strip.Estimate(SegmentEvidence{}).components.curvature.maxCoeff(), 0.0);
+}
+
+TEST(RegistrationReliability, UntrustedPointsGetWiderBoundsAndTrustedOnesKeepTheirs) {
+  // Issue 20: a segment the registration cannot trust (mis-paired, a fallback) must widen the
+  // bound, not only mark the point. Half the strip untrusted, as near a suspect flexure.
+  const Strip strip;
+  const FlatSegment& s = strip.s;
+  SegmentEvidence e;
+  e.flexureAtEnd = {false, true};
+  const VertexUncertainty before = strip.Estimate(e);
+  Eigen::VectorXd trusted = Eigen::VectorXd::Ones(s.uv.rows());
+  for (Eigen::Index i = 0; i < trusted.size(); ++i)
+    if (s.uv(i, 1) > 1.0) trusted(i) = 0.0;
+  VertexUncertainty after = before;
+  ApplyTrust(after, trusted);
+  for (Eigen::Index i = 0; i < trusted.size(); ++i) {
+    if (trusted(i) > 0.5) {
+      EXPECT_EQ(after.bound90(i), before.bound90(i)) << "vertex " << i;
+      EXPECT_EQ(after.median(i), before.median(i)) << "vertex " << i;
+    } else {
+      // The fitted models (RegistrationUncertainty.cxx) put the untrusted points' median error and
+      // 90% bound at about 1.7 times the trusted ones' (exp of 0.55 and 0.51).
+      EXPECT_GT(after.median(i), 1.3 * before.median(i)) << "vertex " << i;
+      EXPECT_GT(after.bound90(i), 1.3 * before.bound90(i)) << "vertex " << i;
+    }
+  }
+  // The model alone: the same point untrusted has the larger median and bound.
+  PointEvidence p;
+  p.nearMm = 40.0;
+  const double trustedBound = UncertaintyBound90(p, e);
+  p.trusted = false;
+  EXPECT_GT(UncertaintyBound90(p, e), trustedBound);
+  EXPECT_GE(UncertaintyBound90(p, e), UncertaintyMedian(p, e));
 }

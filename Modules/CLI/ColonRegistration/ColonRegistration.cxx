@@ -220,18 +220,7 @@ void Run(cli::ModuleContext& ctx) {
     Eigen::VectorXd absMu = r.mu.cwiseAbs(), argMu(r.mu.size());
     for (Eigen::Index f = 0; f < r.mu.size(); ++f) argMu(f) = std::arg(r.mu(f));
     const Eigen::VectorXd K = Dilatation(r.mu);
-    // Uncertainty (RegistrationUncertainty.h): the model's value and its components, per vertex;
-    // the prone side takes the supine values at each prone vertex's inverse image.
     const VertexUncertainty& U = r.uncertainty;
-    const std::pair<const char*, const Eigen::VectorXd*> uarrays[] = {
-        {"Uncertainty", &U.median}, {"Uncertainty90", &U.bound90}, {"UncertaintyLoo", &U.components.loo},
-        {"UncertaintyNearMm", &U.components.nearMm}, {"UncertaintyCorrectionMm", &U.components.correctionMm},
-        {"UncertaintyDilatation", &U.components.dilatation}, {"UncertaintyFlexureMm", &U.components.flexureMm},
-        {"UncertaintyCurvature", &U.components.curvature}};
-    for (const auto& [name, values] : uarrays) {
-      sp.pointData[name] = DataArray{*values, false};
-      pp.pointData[name] = DataArray{Interpolate(r.inverse, s.flat.F, *values), false};
-    }
     sp.cellData["BeltramiAbs"] = DataArray{absMu, false};
     sp.cellData["BeltramiArg"] = DataArray{argMu, false};
     sp.cellData["Dilatation"] = DataArray{K, false};
@@ -269,12 +258,7 @@ void Run(cli::ModuleContext& ctx) {
                         {"rows", r.warp.rows}};
     j["uncertainty"] = {{"pathCorrelation", U.segment.pathCorrelation}, {"droppedFraction", U.segment.droppedFraction},
                         {"matchesPer100mm", U.segment.matchesPer100mm}, {"curvatureAgreement", U.segment.curvatureAgreement},
-                        {"lengthMismatch", U.segment.lengthMismatch}, {"mmPerFlatUnit", U.mmPerFlatUnit},
-                        {"medianOfVertices", U.median.size() ? [&] {
-                           std::vector<double> v(U.median.data(), U.median.data() + U.median.size());
-                           std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-                           return v[v.size() / 2];
-                         }() : 0.0}};
+                        {"lengthMismatch", U.segment.lengthMismatch}, {"mmPerFlatUnit", U.mmPerFlatUnit}};
     j["supineVertices"] = s.flat.V.rows();
     j["proneVertices"] = p.flat.V.rows();
     j["supineCut"] = s.input.cutTaenia;
@@ -325,12 +309,25 @@ void Run(cli::ModuleContext& ctx) {
   for (std::size_t k = 0; k < present.size(); ++k) {
     const int id = present[k];
     const std::string X = kNames[id];
-    const SegmentRegistration& r = regs[k];
+    SegmentRegistration& r = regs[k];
     // The v-min end borders the next segment towards the anus (id + 1), the v-max end the previous.
     const std::array<bool, 2> endSuspect = {r.uncertainty.segment.flexureAtEnd[0] && untrustedId(id + 1),
                                             r.uncertainty.segment.flexureAtEnd[1] && untrustedId(id - 1)};
     const Eigen::VectorXd trusted = TrustedVertices(r.uncertainty.components, trust[k].trusted, endSuspect, reliability);
-    const Eigen::VectorXd reliable = ReliableVertices(trusted, r.uncertainty.bound90, reliability);
+    ApplyTrust(r.uncertainty, trusted);  // the untrusted points' bounds widen
+    const VertexUncertainty& U = r.uncertainty;
+    const Eigen::VectorXd reliable = ReliableVertices(trusted, U.bound90, reliability);
+    // Uncertainty (RegistrationUncertainty.h): the model's value and its components, per vertex;
+    // the prone side takes the supine values at each prone vertex's inverse image.
+    const std::pair<const char*, const Eigen::VectorXd*> uarrays[] = {
+        {"Uncertainty", &U.median}, {"Uncertainty90", &U.bound90}, {"UncertaintyLoo", &U.components.loo},
+        {"UncertaintyNearMm", &U.components.nearMm}, {"UncertaintyCorrectionMm", &U.components.correctionMm},
+        {"UncertaintyDilatation", &U.components.dilatation}, {"UncertaintyFlexureMm", &U.components.flexureMm},
+        {"UncertaintyCurvature", &U.components.curvature}};
+    for (const auto& [name, values] : uarrays) {
+      supineParts[k].pointData[name] = DataArray{*values, false};
+      proneParts[k].pointData[name] = DataArray{Interpolate(r.inverse, supineParts[k].F, *values), false};
+    }
     supineParts[k].pointData["Trusted"] = DataArray{trusted, true};
     supineParts[k].pointData["Reliable"] = DataArray{reliable, true};
     // Prone vertices: as the supine point they come from (the nearest of the three).
@@ -344,6 +341,11 @@ void Run(cli::ModuleContext& ctx) {
     j["untrustedBecause"] = trust[k].reasons;
     j["trustedFraction"] = trusted.size() ? trusted.mean() : 0.0;
     j["reliableFraction"] = reliable.size() ? reliable.mean() : 0.0;
+    j["uncertainty"]["medianOfVertices"] = U.median.size() ? [&] {
+      std::vector<double> v(U.median.data(), U.median.data() + U.median.size());
+      std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+      return v[v.size() / 2];
+    }() : 0.0;
     j["expectedErrorMm"] = j["uncertainty"]["medianOfVertices"];
     // Collapsed stretches bridged by virtual lumen (ColonSurface's Virtual array, where a scan has
     // one): the share of each scan's wall of this segment that its CT did not show.

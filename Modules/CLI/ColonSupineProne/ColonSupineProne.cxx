@@ -3,6 +3,7 @@
 // one stage of this run and commits into its stage folder), then writes summary.json and
 // report.html. Stage folders are hidden temporaries until the very end, so a failed or
 // cancelled run leaves nothing.
+#include "CLI/CpuTime.h"
 #include "CLI/Format.h"
 #include "CLI/ModuleRunner.h"
 #include "Core/Error.h"
@@ -71,6 +72,7 @@ class Pipeline {
                                          const std::vector<std::string>& args) {
     ctx_.progress.StartStage(stage);
     const auto start = std::chrono::steady_clock::now();
+    const double cpuStart = cli::ProcessCpuSeconds();
     std::map<std::string, std::string> results;
     try {
       results = cli::RunNestedModule(ctx_, m.name, m.xml, m.body, args);
@@ -79,10 +81,11 @@ class Pipeline {
       throw Error(ctx_.outputs.UserNames(e.what()));
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double cpuSeconds = cli::ProcessCpuSeconds() - cpuStart;
     ctx_.progress.EndStage();
     json r = json::object();
     for (const auto& [k, v] : results) r[k] = v;
-    stages_.push_back({{"name", stage}, {"module", m.name}, {"seconds", seconds}, {"results", r}});
+    stages_.push_back({{"name", stage}, {"module", m.name}, {"seconds", seconds}, {"cpuSeconds", cpuSeconds}, {"results", r}});
     total_ += seconds;
     return results;
   }

@@ -56,6 +56,11 @@ for stage in ("cleansing supine", "segmentation prone", "surface supine", "landm
               "registration", "transfer findings", "evaluation"):
     t.check(stage in names, f"summary.json has stage '{stage}'")
 t.check(all(s["seconds"] > 0 for s in summary.get("stages", [])), "every stage has a time")
+# CPU of the process during the stage (issue 22): positive, and at most what the machine's cores
+# could give in that wall time (with a little slack for the clocks' granularity).
+cores = os.cpu_count() or 1
+t.check(all(0 < s.get("cpuSeconds", 0) <= cores * s["seconds"] + 0.05 for s in summary.get("stages", [])),
+        "every stage has its CPU seconds, within cores x wall")
 t.check(abs(sum(s["seconds"] for s in summary.get("stages", [])) - summary.get("totalSeconds", -1)) < 0.01,
         "totalSeconds is the sum of the stage times")
 flags = summary.get("quality", [])
