@@ -11,7 +11,7 @@ with the phantom's polyps as findings and its truth: time and peak memory of the
 stage's time, the registration error, and the paper's per-segment times beside ours. Then the
 real-colon pairs (issue 17): ColonPhantom --realColon at 1 mm for each real colon in the shared
 data (time, peak memory, its step times), CT to surface on the GCA supine scan, the whole
-pipeline on the HuBMAP male pair at 1 mm, and ColonSurface on the GCA colon voxelised at 2 and
+pipeline on the HuBMAP male pair at 1 mm and at the clinical spacing, and ColonSurface on the GCA colon voxelised at 2 and
 1 mm as a mask from another tool (label only, hundreds of handles).
 """
 import argparse
@@ -199,6 +199,14 @@ def real_colons(cli, data, work):
         if atlas == "hubmap-vhm-00070" and os.path.exists(os.path.join(cli, "ColonSupineProne")):
             out["pipeline hubmap-vhm-00070 1 mm"] = pipeline(cli, pair, os.path.join(work, "real-pipeline"))
             print("ColonSupineProne real pair", json.dumps(out["pipeline hubmap-vhm-00070 1 mm"]["whole"]))
+            # Issue 22: the same colon at the clinical spacing (the real-anatomy time target).
+            clinical = os.path.join(work, "real-clinical")
+            subprocess.run([os.path.join(cli, "ColonPhantom"), "--outputDirectory", clinical, "--realColon", folder,
+                            "--spacing", "0.7,0.7,1.0"], check=True, capture_output=True)
+            key = "pipeline hubmap-vhm-00070 clinical 0.7x0.7x1.0 mm"
+            out[key] = pipeline(cli, clinical, os.path.join(work, "real-clinical-pipeline"))
+            print("ColonSupineProne real pair, clinical spacing", json.dumps(out[key]["whole"]))
+            shutil.rmtree(clinical, ignore_errors=True)
         shutil.rmtree(pair, ignore_errors=True)
     return out
 
