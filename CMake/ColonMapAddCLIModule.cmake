@@ -41,7 +41,7 @@ function(colonmap_add_cli_module name)
     -Wl,--version-script=${PROJECT_SOURCE_DIR}/CMake/CLIModule.map -Wl,--no-undefined)
 
   add_executable(${name} ${PROJECT_SOURCE_DIR}/CMake/CLIModuleMain.cxx)
-  target_link_libraries(${name} PRIVATE ${name}Lib)
+  target_link_libraries(${name} PRIVATE ${name}Lib ColonMapProgramStart)
   set_target_properties(${name} PROPERTIES
     RUNTIME_OUTPUT_DIRECTORY ${ColonMap_CLI_MODULES_DIR}
     BUILD_RPATH "\$ORIGIN"
