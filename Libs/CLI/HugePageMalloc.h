@@ -4,7 +4,7 @@
 // pages (GLIBC_TUNABLES glibc.malloc.hugetlb=1, glibc >= 2.35). Our stages allocate and free
 // CT-sized buffers (hundreds of MB) many times; with 4 KB pages the kernel faults and zeroes each
 // page of every new buffer: measured on the clinical phantom pair, a third of the CPU time was
-// system time, and the whole pipeline ran in 39 s instead of 71 s with huge pages
+// system time, and the whole pipeline ran in 45 s instead of 71 s with the restart
 // (docs/performance.md). The tunable can only be set before the process starts, hence the restart.
 //
 // Does nothing when GLIBC_TUNABLES already names glibc.malloc.hugetlb (the restarted process, or a
@@ -15,5 +15,8 @@
 namespace colonmap::cli {
 
 void UseHugePageMalloc(int argc, char* argv[]);
+
+// Whether the restart can help here: glibc >= 2.35 on Linux and transparent huge pages not off.
+bool HugePageMallocAvailable();
 
 }  // namespace colonmap::cli

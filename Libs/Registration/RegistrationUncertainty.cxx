@@ -36,32 +36,35 @@ Eigen::Matrix<double, kUncertaintyFeatures, 1> UncertaintyFeatures(const PointEv
   return x;
 }
 
-double UncertaintyMedian(const PointEvidence& p, const SegmentEvidence& s) {
-  const Eigen::Map<const Eigen::Matrix<double, kUncertaintyFeatures, 1>> c(kC);
-  return std::exp(c.dot(UncertaintyFeatures(p, s)));
-}
-
-double UncertaintyBound90(const PointEvidence& p, const SegmentEvidence& s) {
-  const Eigen::Map<const Eigen::Matrix<double, kUncertaintyFeatures, 1>> b(kB);
-  // Two separately fitted linear models can cross far from the data: never below the median.
-  return std::max(std::exp(b.dot(UncertaintyFeatures(p, s))), UncertaintyMedian(p, s));
-}
-
 namespace {
+
+using Features = Eigen::Matrix<double, kUncertaintyFeatures, 1>;
+
+double MedianOf(const Features& x) { return std::exp(Eigen::Map<const Features>(kC).dot(x)); }
+
+// Two separately fitted linear models can cross far from the data: never below the median.
+double Bound90Of(const Features& x) { return std::max(std::exp(Eigen::Map<const Features>(kB).dot(x)), MedianOf(x)); }
 
 PointEvidence EvidenceAt(const UncertaintyComponents& c, Eigen::Index i, bool trusted) {
   return {c.loo(i), c.nearMm(i), c.correctionMm(i), c.dilatation(i), c.flexureMm(i), c.curvature(i), trusted};
 }
 
+// Median and bound at vertex i, the inputs computed once.
+void EvaluateAt(VertexUncertainty& u, Eigen::Index i, const SegmentEvidence& s, bool trusted) {
+  const Features x = UncertaintyFeatures(EvidenceAt(u.components, i, trusted), s);
+  u.median(i) = MedianOf(x);
+  u.bound90(i) = Bound90Of(x);
+}
+
 }  // namespace
+
+double UncertaintyMedian(const PointEvidence& p, const SegmentEvidence& s) { return MedianOf(UncertaintyFeatures(p, s)); }
+
+double UncertaintyBound90(const PointEvidence& p, const SegmentEvidence& s) { return Bound90Of(UncertaintyFeatures(p, s)); }
 
 void ApplyTrust(VertexUncertainty& u, const Eigen::VectorXd& trusted) {
   for (Eigen::Index i = 0; i < trusted.size() && i < u.median.size(); ++i)
-    if (trusted(i) < 0.5) {
-      const PointEvidence p = EvidenceAt(u.components, i, false);
-      u.median(i) = UncertaintyMedian(p, u.segment);
-      u.bound90(i) = UncertaintyBound90(p, u.segment);
-    }
+    if (trusted(i) < 0.5) EvaluateAt(u, i, u.segment, false);
 }
 
 double MmPerFlatUnit(const FlatSegment& flat) {
@@ -180,11 +183,7 @@ VertexUncertainty EstimateUncertainty(const FlatSegment& flat, const Eigen::Matr
   }
   out.median.resize(n);
   out.bound90.resize(n);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const PointEvidence p = EvidenceAt(c, i, true);
-    out.median(i) = UncertaintyMedian(p, evidence);
-    out.bound90(i) = UncertaintyBound90(p, evidence);
-  }
+  for (Eigen::Index i = 0; i < n; ++i) EvaluateAt(out, i, evidence, true);
   return out;
 }
 

@@ -1,10 +1,11 @@
 // The restart with huge-page malloc (CLI/HugePageMalloc.h), through a probe program that starts
 // as the module programs do.
+#include "CLI/HugePageMalloc.h"
+
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cstdio>
-#include <fstream>
 #include <string>
 
 namespace {
@@ -21,20 +22,10 @@ std::string RunProbe(const std::string& environment, const std::string& argument
   return out;
 }
 
-bool Restarts() {
-#if defined(__linux__) && defined(__GLIBC__) && (__GLIBC__ > 2 || (__GLIBC__ == 2 && __GLIBC_MINOR__ >= 35))
-  std::ifstream f("/sys/kernel/mm/transparent_hugepage/enabled");
-  std::string line;
-  return std::getline(f, line) && line.find("[never]") == std::string::npos;
-#else
-  return false;
-#endif
-}
-
 }  // namespace
 
 TEST(HugePageMalloc, RestartsOnceWithTheTunableAndKeepsTheUsersOwn) {
-  if (!Restarts()) {
+  if (!colonmap::cli::HugePageMallocAvailable()) {
     EXPECT_EQ(RunProbe(""), "starts=1 tunables=(unset)\n");
     GTEST_SKIP() << "no transparent huge pages or glibc < 2.35 here: the program must not restart";
   }
