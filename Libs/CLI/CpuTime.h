@@ -5,5 +5,7 @@
 namespace colonmap::cli {
 
 double ProcessCpuSeconds();
+// CPU seconds used so far by the calling thread alone (user + system).
+double ThreadCpuSeconds();
 
 }  // namespace colonmap::cli

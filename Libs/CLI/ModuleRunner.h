@@ -66,5 +66,9 @@ int RunModule(const char* moduleName, const char* xml, int argc, char** argv, Mo
 std::map<std::string, std::string> RunNestedModule(ModuleContext& parent, const char* moduleName,
                                                    const char* xml, ModuleBody body,
                                                    const std::vector<std::string>& arguments);
+// The same into any progress parent (a job on its own thread: CLI/StageChain.h).
+std::map<std::string, std::string> RunNestedModule(ProgressParent& parent, const char* moduleName,
+                                                   const char* xml, ModuleBody body,
+                                                   const std::vector<std::string>& arguments);
 
 }  // namespace colonmap::cli

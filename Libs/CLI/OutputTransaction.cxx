@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <functional>
 #include <system_error>
+#include <thread>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -26,8 +28,11 @@ std::string FullExtension(const std::string& filename) {
 }  // namespace
 
 OutputTransaction::OutputTransaction() {
+  // The thread keeps two transactions of one process apart even when they are made at the same
+  // tick (a pipeline's two scans run on two threads, writing into the same folders).
   const auto ticks = std::chrono::steady_clock::now().time_since_epoch().count();
-  tag_ = std::to_string(::getpid()) + "-" + std::to_string(ticks % 1000000007);
+  const auto thread = std::hash<std::thread::id>{}(std::this_thread::get_id());
+  tag_ = std::to_string(::getpid()) + "-" + std::to_string(ticks % 1000000007) + "-" + std::to_string(thread % 100003);
 }
 
 OutputTransaction::~OutputTransaction() {

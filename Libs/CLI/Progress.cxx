@@ -27,7 +27,7 @@ Progress::Progress(std::string moduleName, Style style, ModuleProcessInformation
   }
 }
 
-Progress::Progress(std::string moduleName, Progress& parent)
+Progress::Progress(std::string moduleName, ProgressParent& parent)
     : module_(std::move(moduleName)), style_(Style::Silent), info_(nullptr), out_(nullptr), parent_(&parent),
       start_(std::chrono::steady_clock::now()) {}
 
@@ -47,6 +47,8 @@ double Progress::StageWeight(const std::string& name) const {
 }
 
 void Progress::StartStage(const std::string& name, const std::string& comment) {
+  // A new stage is a poll of Cancel too: the last one may have ended in a long write.
+  if (AbortRequested()) throw Cancelled();
   stage_ = name;
   stageStart_ = Now();
   currentWeight_ = StageWeight(name);

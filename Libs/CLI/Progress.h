@@ -18,13 +18,22 @@
 
 namespace colonmap::cli {
 
-class Progress : public ProgressSink {
+// What a nested module's progress reports into (RunNestedModule): the fraction of a stage, its
+// notes, and whether the host asked to stop. A Progress is one; a job of a pipeline run on its
+// own thread (CLI/StageChain.h) has another.
+class ProgressParent : public ProgressSink {
+ public:
+  virtual void Note(const std::string& text) = 0;
+  virtual bool AbortRequested() const = 0;
+};
+
+class Progress : public ProgressParent {
  public:
   enum class Style { SlicerTags, Terminal, Silent };
 
   Progress(std::string moduleName, Style style, ModuleProcessInformation* info, std::FILE* out);
   // Nested: reports into `parent`'s current stage.
-  Progress(std::string moduleName, Progress& parent);
+  Progress(std::string moduleName, ProgressParent& parent);
 
   // Declares the stages of the run with their relative weights, so that overall progress rises
   // evenly. Optional: undeclared stages share what is left.
@@ -37,9 +46,9 @@ class Progress : public ProgressSink {
 
   // Seconds per finished stage, in order.
   const std::vector<std::pair<std::string, double>>& StageTimes() const { return times_; }
-  bool AbortRequested() const { return parent_ ? parent_->AbortRequested() : info_ && info_->Abort; }
+  bool AbortRequested() const override { return parent_ ? parent_->AbortRequested() : info_ && info_->Abort; }
   // Prints a note (never to stderr: Slicer logs stderr as errors).
-  void Note(const std::string& text);
+  void Note(const std::string& text) override;
 
  private:
   double Now() const;
@@ -50,7 +59,7 @@ class Progress : public ProgressSink {
   Style style_;
   ModuleProcessInformation* info_;
   std::FILE* out_;
-  Progress* parent_ = nullptr;
+  ProgressParent* parent_ = nullptr;
   std::vector<std::pair<std::string, double>> plan_;
   std::vector<std::pair<std::string, double>> times_;
   std::string stage_;

@@ -13,6 +13,8 @@
 #include <itkImage.h>
 #include <itkImageFileReader.h>
 #include <itkImageFileWriter.h>
+#include <itkImageIOFactory.h>
+#include <itkMultiThreaderBase.h>
 #include <itkImageSeriesReader.h>
 #include <itkMetaDataObject.h>
 
@@ -278,6 +280,13 @@ COLONMAP_INSTANTIATE(short)
 COLONMAP_INSTANTIATE(unsigned char)
 COLONMAP_INSTANTIATE(float)
 #undef COLONMAP_INSTANTIATE
+
+void ItkPrepareForThreads() {
+  itk::Image<short, 3>::New();
+  itk::MultiThreaderBase::New();
+  itk::MultiThreaderBase::GetGlobalDefaultNumberOfThreads();
+  itk::ImageIOFactory::CreateImageIO("prepare.nrrd", itk::ImageIOFactory::FileModeEnum::ReadMode);
+}
 
 }  // namespace colonmap::io::detail
 

@@ -26,4 +26,8 @@ template <typename T>
 void ItkWriteImage(const ImageGeometry& geometry, const T* voxels, const std::string& path,
                    const std::string& what, bool compress);
 
+// Makes ITK's lazily built global state (object factory list, image IO factories, the default
+// multi-threader) on the calling thread, so that threads started afterwards only read it.
+void ItkPrepareForThreads();
+
 }  // namespace colonmap::io::detail

@@ -356,7 +356,7 @@ def test_report_only(a):
     s = json.load(open(os.path.join(out, "summary.json")))
     records = os.path.join(work, "records.json")
     with open(records, "w") as f:
-        json.dump({"stages": s["stages"], "notes": s["notes"]}, f)
+        json.dump({"stages": s["stages"], "stageBlocks": s.get("stageBlocks", []), "notes": s["notes"]}, f)
     ret = os.path.join(work, "returns.txt")
     r = subprocess.run([exe, "--reportOnly", *inputs, "--outputDirectory", copy, "--stageRecords", records,
                         "--returnparameterfile", ret], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)

@@ -1,4 +1,5 @@
 // Argument parsing driven by the XML: defaults, every type, constraints, points, --help.
+#include "AllTypesXml.h"
 #include "CLI/Arguments.h"
 #include "CLI/ModuleDescription.h"
 #include "Core/Error.h"
@@ -12,13 +13,6 @@ using namespace colonmap;
 using namespace colonmap::cli;
 
 namespace {
-
-std::string AllTypesXml() {
-  std::ifstream in(COLONMAP_TEST_XML);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 Arguments Parse(std::vector<std::string> args) {
   static const ModuleDescription module = ParseModuleDescription(AllTypesXml());

@@ -1,4 +1,5 @@
 // The run wrapper: --xml, --echo, return parameters, errors, Cancel, all-or-nothing outputs.
+#include "AllTypesXml.h"
 #include "Core/Testing/FreshTempDir.h"
 #include "CLI/ModuleRunner.h"
 #include "CLI/OutputTransaction.h"
@@ -16,13 +17,6 @@ using namespace colonmap;
 using namespace colonmap::cli;
 
 namespace {
-
-std::string AllTypesXml() {
-  std::ifstream in(COLONMAP_TEST_XML);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 fs::path TempDir(const std::string& name) { return colonmap::FreshTempDir("runner", name); }
 
@@ -188,8 +182,8 @@ TEST(Progress, InProcessStructGetsMonotoneProgressCallbacksAndAbort) {
   for (std::size_t i = 1; i < log.values.size(); ++i) EXPECT_GE(log.values[i], log.values[i - 1]);
   EXPECT_FLOAT_EQ(log.values.back(), 1.0f);
   info.Abort = 1;
-  progress.StartStage("c");
   EXPECT_THROW(progress.Report(0.1), Cancelled);
+  EXPECT_THROW(progress.StartStage("c"), Cancelled);  // a new stage polls Cancel too
 }
 
 TEST(Progress, AddressParsing) {

@@ -4,11 +4,13 @@
 #include "CLI/Format.h"
 #include "CLI/ModuleRunner.h"
 #include "Core/Error.h"
+#include "Core/RunConcurrently.h"
 #include "IO/ImageIO.h"
 #include "IO/MarkupsIO.h"
 #include "IO/MeshIO.h"
 #include "IO/SegmentFile.h"
 #include "IO/StageReports.h"
+#include "IO/ToolkitThreads.h"
 #include "Registration/EmbeddedProneMesh.h"
 #include "Registration/FlatLocator.h"
 #include "Registration/RegistrationReliability.h"
@@ -18,7 +20,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <filesystem>
+#include <memory>
 #include <fstream>
 #include <optional>
 
@@ -45,8 +49,8 @@ const DataArray& Need(const TriangleMesh& m, const std::string& name, int cols, 
   return it->second;
 }
 
-ScanSegment ReadSegment(const fs::path& dir, int id, const io::FlatteningReport& report, const std::string& scan) {
-  ScanSegment s;
+// Fills `s` in place: s.input points into s (its curvature image).
+void ReadSegment(ScanSegment& s, const fs::path& dir, int id, const io::FlatteningReport& report, const std::string& scan) {
   const std::string X = kNames[id];
   const std::string path = (dir / ("flat_" + X + ".vtp")).string(), what = scan + " flat mesh " + X;
   s.flat = io::ReadMesh(path, what);
@@ -74,7 +78,6 @@ ScanSegment ReadSegment(const fs::path& dir, int id, const io::FlatteningReport&
     s.curvature = io::ReadImage<float>(image.string(), scan + " curvature image " + X);
     s.input.curvature = &*s.curvature;
   }
-  return s;
 }
 
 // Whether the scan's flexures were chosen jointly with the other scan: ColonLandmarks records
@@ -181,10 +184,12 @@ void Run(cli::ModuleContext& ctx) {
     }
   }
   if (present.empty()) throw InputError("supine flattening folder", sdir, "holds none of flat_A.vtp ... flat_R.vtp");
-  plan.emplace_back("Write", 0.1 * plan.front().second);
+  // The host's stages: the segments (two at a time), their results in order, the files.
+  double segmentsWeight = 0.0;
+  for (const auto& [name, w] : plan) segmentsWeight += w;
   const io::FlatteningReport sreport = ReadReport(sdir, "supine"), preport = ReadReport(pdir, "prone");
   ctx.outputs.PrepareDirectory(out, "output folder");
-  ctx.progress.Plan(plan);
+  ctx.progress.Plan({{"Segments", segmentsWeight}, {"Results", 0.05 * segmentsWeight}, {"Write", 0.1 * plan.front().second}});
 
   std::vector<TriangleMesh> supineParts, proneParts;
   std::vector<SegmentRegistration> regs;
@@ -194,20 +199,69 @@ void Run(cli::ModuleContext& ctx) {
   MarkupList supineFeatures, proneFeatures;
   supineFeatures.name = "supine features";
   proneFeatures.name = "prone features";
-  for (int id : present) {
-    const std::string X = kNames[id];
-    ctx.progress.StartStage("Segment " + X, "registering segment " + X);
-    const ScanSegment s = ReadSegment(sdir, id, sreport, "supine"), p = ReadSegment(pdir, id, preport, "prone");
-    ctx.progress.Report(0.2);
+  // The segments are registered independently: two at a time (Core/RunConcurrently.h), shared
+  // out by size; everything else is done afterwards in segment order, so the outputs do not
+  // depend on which thread registered what.
+  struct Registered {
+    ScanSegment s, p;
     SegmentRegistration r;
-    try {
-      SubProgress sub(ctx.progress, 0.2, 1.0);
-      r = RegisterSegment(s.input, p.input, method, sub, harmonic);
-    } catch (const Cancelled&) {
-      throw;
-    } catch (const Error& e) {
-      throw Error("segment " + X + ": " + e.what());
+  };
+  std::vector<std::unique_ptr<Registered>> done(present.size());
+  // A segment's error is kept and the job goes on, so that the one reported is the first in
+  // segment order, as when they ran one after the other.
+  std::vector<std::exception_ptr> failed(present.size());
+  std::vector<std::size_t> share[2];
+  {
+    double load[2] = {0.0, 0.0};
+    std::vector<std::size_t> order(present.size());
+    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return plan[a].second > plan[b].second; });
+    for (std::size_t k : order) {
+      const int t = load[0] <= load[1] ? 0 : 1;
+      share[t].push_back(k);
+      load[t] += plan[k].second;
     }
+  }
+  auto job = [&](int t) {
+    return [&, t](ProgressSink& sink) {
+      double total = 0.0, before = 0.0;
+      for (std::size_t k : share[t]) total += plan[k].second;
+      for (std::size_t k : share[t]) {
+        const int id = present[k];
+        const std::string X = kNames[id];
+        SubProgress segment(sink, before / total, (before + plan[k].second) / total);
+        done[k] = std::make_unique<Registered>();
+        Registered& d = *done[k];
+        try {
+          ReadSegment(d.s, sdir, id, sreport, "supine");
+          ReadSegment(d.p, pdir, id, preport, "prone");
+          segment.Report(0.2);
+          try {
+            SubProgress sub(segment, 0.2, 1.0);
+            d.r = RegisterSegment(d.s.input, d.p.input, method, sub, harmonic);
+          } catch (const Error& e) {
+            throw Error("segment " + X + ": " + e.what());
+          }
+        } catch (const Error&) {
+          failed[k] = std::current_exception();
+        }
+        before += plan[k].second;
+      }
+    };
+  };
+  ctx.progress.StartStage("Segments", "registering the segments, two at a time");
+  io::PrepareToolkitsForThreads();
+  RunConcurrently(job(0), job(1), ctx.progress);
+  for (const std::exception_ptr& e : failed)
+    if (e) std::rethrow_exception(e);
+  ctx.progress.EndStage();
+  ctx.progress.StartStage("Results", "per segment results, in order");
+  for (std::size_t n = 0; n < present.size(); ++n) {
+    const int id = present[n];
+    const std::string X = kNames[id];
+    const ScanSegment& s = done[n]->s;
+    const ScanSegment& p = done[n]->p;
+    SegmentRegistration& r = done[n]->r;
     supineParts.push_back(SurfaceOf(s, id));
     proneParts.push_back(SurfaceOf(p, id));
     TriangleMesh& sp = supineParts.back();
@@ -294,8 +348,10 @@ void Run(cli::ModuleContext& ctx) {
                       std::to_string(r.flatFlips) + "/" + std::to_string(r.surfaceFlips) + ", K mean " +
                       cli::FormatNumber(K.mean()) + "; times: " + steps);
     regs.push_back(std::move(r));
-    ctx.progress.EndStage();
+    done[n].reset();
+    ctx.progress.Report(static_cast<double>(n + 1) / present.size());
   }
+  ctx.progress.EndStage();
 
   // Trust per segment, then per vertex (RegistrationReliability.h): an untrusted segment makes
   // the flexures at its ends suspect for its neighbours.

@@ -48,6 +48,7 @@ void Run(cli::ModuleContext& ctx) {
 
   ctx.progress.StartStage("Writing", "writing the label map");
   io::WriteImage(s.label, staged, "output label map");
+  ctx.progress.Report(0.5);  // also a poll of Cancel between the two files
   if (!stagedBridge.empty())
     io::WriteImage(s.bridgeLabel.voxels.empty() ? s.label.Like<unsigned char>(0) : s.bridgeLabel, stagedBridge,
                    "virtual lumen label map");

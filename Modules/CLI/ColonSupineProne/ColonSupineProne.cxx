@@ -6,16 +6,21 @@
 #include "CLI/CpuTime.h"
 #include "CLI/Format.h"
 #include "CLI/ModuleRunner.h"
+#include "CLI/StageChain.h"
 #include "Core/Error.h"
+#include "Core/RunConcurrently.h"
 #include "IO/ImageCheck.h"
 #include "IO/MarkupsIO.h"
 #include "IO/NodeFiles.h"
 #include "IO/StageReports.h"
+#include "IO/ToolkitThreads.h"
 #include "Report/PipelineReport.h"
 #include "Report/QualityFlags.h"
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <filesystem>
 #include <regex>
@@ -47,10 +52,22 @@ struct StageModule {
   StageModule { #Name, colonmap::modules::Name##XML, &colonmap::modules::Run##Name }
 
 const char* const kScans[2] = {"supine", "prone"};
+// The host's progress stages that run both scans' jobs (Pipeline::RunBoth).
+const char* const kScansStage = "scans: cleansing, segmentation, surface";
+const char* const kFlatteningStage = "flattening of both scans";
 
 struct Options {
   std::string scan[2], out, findings, truth, method, targetFaces, labelValue;
   bool labelMaps = false, views = true;
+  bool sideBySide = true;  // the two scans' independent stages on two threads (--sequential: off)
+};
+
+// One step of a scan's job (RunBoth): a stage record's name, the module, its arguments.
+struct Step {
+  std::string name;
+  StageModule module;
+  std::vector<std::string> args;
+  double weight;
 };
 
 // One run of the pipeline: stage folders (temporary until the end), stage records.
@@ -90,8 +107,78 @@ class Pipeline {
     return results;
   }
 
+  // The two scans' jobs as one stage of the host's progress (issue 22): side by side on two
+  // threads (Core/RunConcurrently.h; the outputs are the same as one after the other, tested),
+  // or, with --sequential, the supine job and then the prone one. Each step keeps its own record
+  // (its wall time and its thread's CPU time); the block's wall and process CPU time are recorded
+  // in `blocks`. Stage folders must exist before (Folder() is not for threads).
+  void RunBoth(const std::string& stage, const std::array<std::vector<Step>, 2>& jobs) {
+    ctx_.progress.StartStage(stage);
+    const auto start = std::chrono::steady_clock::now();
+    const double cpuStart = cli::ProcessCpuSeconds();
+    std::array<std::vector<cli::StepRecord>, 2> records;
+    std::array<std::vector<std::string>, 2> notes;
+    auto job = [&](int k) {
+      return [&, k](ProgressSink& sink) {
+        std::vector<std::pair<std::string, double>> plan;
+        for (const Step& s : jobs[k]) plan.emplace_back(s.name, s.weight);
+        cli::StageChain chain(sink, plan, [this] { return ctx_.progress.AbortRequested(); });
+        try {
+          for (const Step& s : jobs[k]) chain.Run(s.name, s.module.name, s.module.xml, s.module.body, s.args);
+        } catch (...) {
+          notes[k] = chain.TakeNotes();
+          throw;
+        }
+        records[k] = chain.Records();
+        notes[k] = chain.TakeNotes();
+      };
+    };
+    try {
+      if (o_.sideBySide) {
+        io::PrepareToolkitsForThreads();
+        RunConcurrently(job(0), job(1), ctx_.progress);
+      } else {
+        SubProgress first(ctx_.progress, 0.0, 0.5), second(ctx_.progress, 0.5, 1.0);
+        job(0)(first);
+        job(1)(second);
+      }
+    } catch (const Error& e) {
+      PrintNotes(notes);
+      throw Error(ctx_.outputs.UserNames(e.what()));
+    }
+    PrintNotes(notes);
+    for (const auto& job : records)
+      for (const cli::StepRecord& r : job)
+        ctx_.progress.Note("ColonSupineProne: " + r.name + " done in " + cli::FormatFixed(r.seconds, 2) + " s" +
+                           (o_.sideBySide ? " (side by side with the other scan)" : ""));
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double cpuSeconds = cli::ProcessCpuSeconds() - cpuStart;
+    ctx_.progress.EndStage();
+    json names = json::array();
+    for (const auto& job : records)
+      for (const cli::StepRecord& r : job) {
+        json results = json::object();
+        for (const auto& [k, v] : r.results) results[k] = v;
+        stages_.push_back({{"name", r.name}, {"module", r.module}, {"seconds", r.seconds},
+                           {"threadCpuSeconds", r.threadCpuSeconds}, {"block", stage}, {"results", results}});
+        names.push_back(r.name);
+      }
+    blocks_.push_back({{"name", stage}, {"stages", names}, {"sideBySide", o_.sideBySide}, {"seconds", seconds},
+                       {"cpuSeconds", cpuSeconds}});
+    total_ += seconds;
+  }
+
+  // The jobs' notes, supine first; a note the prone job repeats word for word (both scans the
+  // same file, say) is printed once.
+  void PrintNotes(const std::array<std::vector<std::string>, 2>& notes) {
+    for (const auto& line : notes[0]) ctx_.progress.Note(line);
+    for (const auto& line : notes[1])
+      if (std::find(notes[0].begin(), notes[0].end(), line) == notes[0].end()) ctx_.progress.Note(line);
+  }
+
   const std::map<std::string, std::string>& Folders() const { return folders_; }
   const json& Stages() const { return stages_; }
+  const json& Blocks() const { return blocks_; }
   double TotalSeconds() const { return total_; }
 
  private:
@@ -99,7 +186,8 @@ class Pipeline {
   const Options& o_;
   std::map<std::string, std::string> folders_;
   json stages_ = json::array();
-  double total_ = 0.0;
+  json blocks_ = json::array();
+  double total_ = 0.0;  // wall seconds: stages run alone plus blocks
 };
 
 std::string DescriptionField(const std::string& description, const std::string& key) {
@@ -175,16 +263,12 @@ void WriteFindingsNodes(cli::ModuleContext& ctx, const std::string& mapped, cons
 }
 
 std::vector<std::pair<std::string, double>> Plan(const Options& o) {
+  // The two scans' jobs are one stage each (Pipeline::RunBoth): cleansing 2, segmentation 5,
+  // surface 9 per scan; flattening 1 per scan.
   std::vector<std::pair<std::string, double>> plan;
-  for (const char* scan : kScans) {
-    if (!o.labelMaps) {
-      plan.emplace_back(std::string("cleansing ") + scan, 2.0);
-      plan.emplace_back(std::string("segmentation ") + scan, 5.0);
-    }
-    plan.emplace_back(std::string("surface ") + scan, 9.0);
-  }
+  plan.emplace_back(kScansStage, o.labelMaps ? 18.0 : 32.0);
   plan.emplace_back("landmarks", 4.0);
-  for (const char* scan : kScans) plan.emplace_back(std::string("flattening ") + scan, 1.0);
+  plan.emplace_back(kFlatteningStage, 2.0);
   plan.emplace_back("registration", 2.0);
   if (o.views) plan.emplace_back("flat views", 1.0);
   if (!o.findings.empty()) plan.emplace_back("transfer findings", 0.2);
@@ -218,7 +302,8 @@ void CheckInputs(const Options& o, bool scansMustExist = true) {
 
 // summary.json and report.html from the stage records and the (possibly temporary) stage folders;
 // the return parameters and the closing note. Shared by the whole run and --reportOnly.
-void WriteSummaryAndReport(cli::ModuleContext& ctx, const Options& o, const json& stages, double totalSeconds,
+void WriteSummaryAndReport(cli::ModuleContext& ctx, const Options& o, const json& stages, const json& blocks,
+                           double totalSeconds,
                            const std::map<std::string, std::string>& folders, const json& notes,
                            const json& findingsTable) {
   const auto in_ = [&](const std::string& stage, const std::string& file) {
@@ -242,6 +327,7 @@ void WriteSummaryAndReport(cli::ModuleContext& ctx, const Options& o, const json
                             {"findings", o.findings}, {"groundTruth", o.truth}}},
                 {"method", o.method},
                 {"stages", stages},
+                {"stageBlocks", blocks},
                 {"totalSeconds", totalSeconds},
                 {"quality", flags},
                 {"warnings", warnings},
@@ -291,17 +377,22 @@ void BuildReportOnly(cli::ModuleContext& ctx, const Options& o, const std::strin
                             "flatviews", "transfer", "views", "evaluation"})
     if (fs::is_directory(out / stage)) folders[stage] = (out / stage).string();
   CheckStageReports(o);
-  json stages = json::array(), notes = json::array();
+  json stages = json::array(), notes = json::array(), blocks = json::array();
   if (!recordsPath.empty()) {
     const json records = report::ReadJsonOrNull(recordsPath);
     if (!records.is_object() || !records.value("stages", json()).is_array())
       throw InputError("stage records", recordsPath, "is not a JSON object with a \"stages\" array");
     stages = records["stages"];
     if (records.value("notes", json()).is_array()) notes = records["notes"];
+    if (records.value("stageBlocks", json()).is_array()) blocks = records["stageBlocks"];
   }
+  // As the whole run counts it: the stages run alone plus the blocks of both scans' jobs.
   double totalSeconds = 0.0;
   for (const auto& s : stages)
-    if (s.is_object() && s.value("seconds", json()).is_number()) totalSeconds += s["seconds"].get<double>();
+    if (s.is_object() && !s.contains("block") && s.value("seconds", json()).is_number())
+      totalSeconds += s["seconds"].get<double>();
+  for (const auto& b : blocks)
+    if (b.is_object() && b.value("seconds", json()).is_number()) totalSeconds += b["seconds"].get<double>();
   json findingsTable = json::array();
   if (!o.findings.empty()) {
     const fs::path mapped = out / "transfer" / "findings_prone.mrk.json";
@@ -330,7 +421,7 @@ void BuildReportOnly(cli::ModuleContext& ctx, const Options& o, const std::strin
   WriteModelNodes(ctx, (out / "registration").string());
   ctx.progress.Plan({{"report", 0.2}});
   ctx.progress.StartStage("report");
-  WriteSummaryAndReport(ctx, o, stages, totalSeconds, folders, notes, findingsTable);
+  WriteSummaryAndReport(ctx, o, stages, blocks, totalSeconds, folders, notes, findingsTable);
 }
 
 // The report reads many fields of the stage files beyond those IO/StageReports checks; our modules
@@ -354,6 +445,7 @@ void Run(cli::ModuleContext& ctx) {
   o.method = ctx.args.GetString("method");
   o.labelMaps = ctx.args.GetBool("labelMaps");
   o.views = !ctx.args.GetBool("skipViews");
+  o.sideBySide = !ctx.args.GetBool("sequential");
   o.targetFaces = std::to_string(ctx.args.GetInt("targetFaces"));
   o.labelValue = std::to_string(ctx.args.GetInt("labelValue"));
   if (o.out.empty()) throw Error("output folder: no folder given (--outputDirectory)");
@@ -371,6 +463,10 @@ void Run(cli::ModuleContext& ctx) {
   Pipeline p(ctx, o);
   json notes = json::array();
   std::string volume[2];  // what the endoluminal views render
+  std::array<std::vector<Step>, 2> scanJobs, flatJobs;
+  // The jobs' folders, made here: the threads only use their names.
+  if (!o.labelMaps) p.Folder("cleansing"), p.Folder("segmentation");
+  for (const char* stage : {"surface", "landmarks", "flattening"}) p.Folder(stage);
   for (int k = 0; k < 2; ++k) {
     const std::string scan = kScans[k];
     const std::string surface = p.In("surface", scan + "_surface.vtp");
@@ -380,26 +476,29 @@ void Run(cli::ModuleContext& ctx) {
       // A colon in pieces (collapsed stretches) is bridged by virtual lumen, and its wall marked
       // (issue 21); a colon in one piece gives the same files as without.
       const std::string virtualLumen = p.In("segmentation", scan + "_virtual.nrrd");
-      p.Run("cleansing " + scan, COLONMAP_STAGE(ColonCleansing),
-            {o.scan[k], cleansed, "--taggedLabel", p.In("cleansing", scan + "_tagged.nrrd")});
-      p.Run("segmentation " + scan, COLONMAP_STAGE(ColonSegmentation),
-            {cleansed, lumen, "--bridgePieces", "--bridgeLabel", virtualLumen});
-      p.Run("surface " + scan, COLONMAP_STAGE(ColonSurface),
-            {lumen, surface, "--referenceCT", cleansed, "--targetFaces", o.targetFaces, "--virtualLabel", virtualLumen});
+      scanJobs[k].push_back({"cleansing " + scan, COLONMAP_STAGE(ColonCleansing),
+                             {o.scan[k], cleansed, "--taggedLabel", p.In("cleansing", scan + "_tagged.nrrd")}, 2.0});
+      scanJobs[k].push_back({"segmentation " + scan, COLONMAP_STAGE(ColonSegmentation),
+                             {cleansed, lumen, "--bridgePieces", "--bridgeLabel", virtualLumen}, 5.0});
+      scanJobs[k].push_back({"surface " + scan, COLONMAP_STAGE(ColonSurface),
+                             {lumen, surface, "--referenceCT", cleansed, "--targetFaces", o.targetFaces, "--virtualLabel",
+                              virtualLumen},
+                             9.0});
       volume[k] = cleansed;
     } else {
-      p.Run("surface " + scan, COLONMAP_STAGE(ColonSurface),
-            {o.scan[k], surface, "--labelValue", o.labelValue, "--targetFaces", o.targetFaces});
+      scanJobs[k].push_back({"surface " + scan, COLONMAP_STAGE(ColonSurface),
+                             {o.scan[k], surface, "--labelValue", o.labelValue, "--targetFaces", o.targetFaces}, 9.0});
     }
+    flatJobs[k].push_back({"flattening " + scan, COLONMAP_STAGE(ColonFlattening),
+                           {p.In("landmarks", scan), p.In("flattening", scan)}, 1.0});
   }
+  p.RunBoth(kScansStage, scanJobs);
   // Both scans at once: their flexures are chosen together (the same anatomy in both).
   p.Run("landmarks", COLONMAP_STAGE(ColonLandmarks),
         {p.In("surface", "supine_surface.vtp"), p.In("landmarks", "supine"), "--pairedSurface",
          p.In("surface", "prone_surface.vtp"), "--pairedOutputDirectory", p.In("landmarks", "prone"), "--scanNames",
          "supine,prone"});
-  for (const char* scan : kScans)
-    p.Run(std::string("flattening ") + scan, COLONMAP_STAGE(ColonFlattening),
-          {p.In("landmarks", scan), p.In("flattening", scan)});
+  p.RunBoth(kFlatteningStage, flatJobs);
   const std::string reg = p.In("registration", "registration.vtp");
   p.Run("registration", COLONMAP_STAGE(ColonRegistration),
         {p.In("flattening", "supine"), p.In("flattening", "prone"), p.Folder("registration"), "--method", o.method});
@@ -452,7 +551,7 @@ void Run(cli::ModuleContext& ctx) {
   ctx.progress.StartStage("report");
   std::map<std::string, std::string> folders;
   for (const auto& [stage, folder] : p.Folders()) folders[stage] = folder;
-  WriteSummaryAndReport(ctx, o, p.Stages(), p.TotalSeconds(), folders, notes, findingsTable);
+  WriteSummaryAndReport(ctx, o, p.Stages(), p.Blocks(), p.TotalSeconds(), folders, notes, findingsTable);
 }
 
 }  // namespace
