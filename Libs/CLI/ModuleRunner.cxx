@@ -106,12 +106,12 @@ int RunModule(const char* moduleName, const char* xml, int argc, char** argv, Mo
 std::map<std::string, std::string> RunNestedModule(ModuleContext& parent, const char* moduleName,
                                                    const char* xml, ModuleBody body,
                                                    const std::vector<std::string>& arguments) {
-  return RunNestedModule(static_cast<ProgressParent&>(parent.progress), moduleName, xml, body, arguments);
+  return RunNestedModule(static_cast<ProgressParent&>(parent.progress), moduleName, xml, body, arguments, parent.shelf);
 }
 
 std::map<std::string, std::string> RunNestedModule(ProgressParent& parent, const char* moduleName,
                                                    const char* xml, ModuleBody body,
-                                                   const std::vector<std::string>& arguments) {
+                                                   const std::vector<std::string>& arguments, VolumeShelf* shelf) {
   std::vector<std::string> words{moduleName};
   words.insert(words.end(), arguments.begin(), arguments.end());
   std::vector<char*> argv;
@@ -122,7 +122,7 @@ std::map<std::string, std::string> RunNestedModule(ProgressParent& parent, const
     const Arguments args = ParseCommandLine(description, moduleName, static_cast<int>(words.size()), argv.data());
     Progress progress(moduleName, parent);
     OutputTransaction outputs;
-    ModuleContext ctx{moduleName, description, args, progress, outputs, {}};
+    ModuleContext ctx{moduleName, description, args, progress, outputs, {}, shelf};
     try {
       body(ctx);
       outputs.Commit();

@@ -31,6 +31,10 @@
   extern const char Name##XML[];           \
   }
 
+namespace colonmap {
+class VolumeShelf;
+}
+
 namespace colonmap::cli {
 
 struct ModuleContext {
@@ -40,6 +44,9 @@ struct ModuleContext {
   Progress& progress;
   OutputTransaction& outputs;
   std::map<std::string, std::string> returnValues;  // written to --returnparameterfile
+  // Run as a stage of a pipeline in one process: volumes handed on in memory (Core/VolumeShelf.h;
+  // io::ReadImageKept), else null.
+  VolumeShelf* shelf = nullptr;
 
   void SetReturn(const std::string& name, const std::string& value);
   // What a reader tells the user about how it read a file (io::NoteSink): "<Module>: note: ..."
@@ -66,9 +73,11 @@ int RunModule(const char* moduleName, const char* xml, int argc, char** argv, Mo
 std::map<std::string, std::string> RunNestedModule(ModuleContext& parent, const char* moduleName,
                                                    const char* xml, ModuleBody body,
                                                    const std::vector<std::string>& arguments);
-// The same into any progress parent (a job on its own thread: CLI/StageChain.h).
+// The same into any progress parent (a job on its own thread: CLI/StageChain.h), with the
+// pipeline's shelf of volumes (may be null).
 std::map<std::string, std::string> RunNestedModule(ProgressParent& parent, const char* moduleName,
                                                    const char* xml, ModuleBody body,
-                                                   const std::vector<std::string>& arguments);
+                                                   const std::vector<std::string>& arguments,
+                                                   VolumeShelf* shelf = nullptr);
 
 }  // namespace colonmap::cli

@@ -46,7 +46,11 @@ class Progress : public ProgressParent {
 
   // Seconds per finished stage, in order.
   const std::vector<std::pair<std::string, double>>& StageTimes() const { return times_; }
-  bool AbortRequested() const override { return parent_ ? parent_->AbortRequested() : info_ && info_->Abort; }
+  // The host sets Abort from its own thread (and ColonSupineProne's jobs read it from two): an
+  // atomic read of the plain field.
+  bool AbortRequested() const override {
+    return parent_ ? parent_->AbortRequested() : info_ && __atomic_load_n(&info_->Abort, __ATOMIC_RELAXED);
+  }
   // Prints a note (never to stderr: Slicer logs stderr as errors).
   void Note(const std::string& text) override;
 

@@ -9,8 +9,8 @@
 namespace colonmap::cli {
 
 StageChain::StageChain(ProgressSink& sink, std::vector<std::pair<std::string, double>> plan,
-                       std::function<bool()> hostAbort)
-    : sink_(sink), hostAbort_(std::move(hostAbort)), plan_(std::move(plan)) {}
+                       std::function<bool()> hostAbort, VolumeShelf* shelf)
+    : sink_(sink), hostAbort_(std::move(hostAbort)), shelf_(shelf), plan_(std::move(plan)) {}
 
 std::map<std::string, std::string> StageChain::Run(const std::string& step, const char* moduleName, const char* xml,
                                                    ModuleBody body, const std::vector<std::string>& arguments) {
@@ -32,7 +32,7 @@ std::map<std::string, std::string> StageChain::Run(const std::string& step, cons
   StepRecord record{step, moduleName, 0.0, 0.0, {}};
   const auto start = std::chrono::steady_clock::now();
   const double cpuStart = ThreadCpuSeconds();
-  record.results = RunNestedModule(*this, moduleName, xml, body, arguments);
+  record.results = RunNestedModule(*this, moduleName, xml, body, arguments, shelf_);
   record.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   record.threadCpuSeconds = ThreadCpuSeconds() - cpuStart;
   Report(1.0);

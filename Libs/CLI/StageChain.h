@@ -30,8 +30,9 @@ class StageChain : public ProgressParent {
   // plan: the steps' names and relative weights, in order (a step not named shares nothing).
   // hostAbort (optional): the host's Abort, read directly so that a job on a worker thread stops
   // as soon as the one on the host's thread, not after it.
+  // shelf (optional): the pipeline's volumes handed on in memory (Core/VolumeShelf.h).
   StageChain(ProgressSink& sink, std::vector<std::pair<std::string, double>> plan,
-             std::function<bool()> hostAbort = {});
+             std::function<bool()> hostAbort = {}, VolumeShelf* shelf = nullptr);
 
   // Runs a module's body as the next step (RunNestedModule); its record is appended.
   std::map<std::string, std::string> Run(const std::string& step, const char* moduleName, const char* xml,
@@ -50,6 +51,7 @@ class StageChain : public ProgressParent {
  private:
   ProgressSink& sink_;
   std::function<bool()> hostAbort_;
+  VolumeShelf* shelf_;
   std::vector<std::pair<std::string, double>> plan_;
   double from_ = 0.0, to_ = 0.0;  // the current step's share of the job
   double last_ = 0.0;             // the last fraction of the job passed on

@@ -4,8 +4,9 @@
 // job runs on a worker thread whose progress is stored atomically and forwarded (with the first
 // job's, as their mean) by the caller, which also polls while it waits. When the host cancels,
 // the worker is asked to stop at its next Report(), both are joined, and Cancelled propagates.
-// An exception of either job is rethrown in the caller after both have ended (the first job's
-// first).
+// When the worker fails, the first job is stopped the same way at its next Report() (its work
+// is wasted), and the worker's error is what propagates. Otherwise an exception of either job is
+// rethrown in the caller after both have ended (the first job's first).
 #include "Core/Cancel.h"
 
 #include <atomic>
@@ -19,7 +20,7 @@ namespace colonmap {
 template <class First, class Second>
 void RunConcurrently(First&& first, Second&& second, ProgressSink& progress) {
   std::atomic<double> secondFraction{0.0};
-  std::atomic<bool> stop{false};
+  std::atomic<bool> stop{false}, secondFailed{false};
   double firstFraction = 0.0;
   struct WorkerSink : ProgressSink {
     std::atomic<double>& fraction;
@@ -35,9 +36,11 @@ void RunConcurrently(First&& first, Second&& second, ProgressSink& progress) {
     double& own;
     std::atomic<double>& other;
     std::atomic<bool>& stop;
-    CallerSink(ProgressSink& p, double& o, std::atomic<double>& w, std::atomic<bool>& s)
-        : parent(p), own(o), other(w), stop(s) {}
+    std::atomic<bool>& otherFailed;
+    CallerSink(ProgressSink& p, double& o, std::atomic<double>& w, std::atomic<bool>& s, std::atomic<bool>& failed)
+        : parent(p), own(o), other(w), stop(s), otherFailed(failed) {}
     void Report(double f) override {
+      if (otherFailed.load()) throw Cancelled();  // stopped for the worker's error, rethrown below
       own = f;
       try {
         parent.Report(0.5 * (own + other.load()));
@@ -46,9 +49,18 @@ void RunConcurrently(First&& first, Second&& second, ProgressSink& progress) {
         throw;
       }
     }
-  } callerSink(progress, firstFraction, secondFraction, stop);
+  } callerSink(progress, firstFraction, secondFraction, stop, secondFailed);
 
-  std::future<void> worker = std::async(std::launch::async, [&] { second(static_cast<ProgressSink&>(workerSink)); });
+  std::future<void> worker = std::async(std::launch::async, [&] {
+    try {
+      second(static_cast<ProgressSink&>(workerSink));
+    } catch (const Cancelled&) {
+      throw;
+    } catch (...) {
+      secondFailed.store(true);
+      throw;
+    }
+  });
   std::exception_ptr firstError;
   try {
     first(static_cast<ProgressSink&>(callerSink));
@@ -65,8 +77,22 @@ void RunConcurrently(First&& first, Second&& second, ProgressSink& progress) {
   } catch (...) {
     secondError = std::current_exception();
   }
+  if (secondFailed.load() && secondError) {
+    // The first job's error may only be the stop the worker's failure caused.
+    bool firstCancelled = !firstError;
+    if (firstError) {
+      try {
+        std::rethrow_exception(firstError);
+      } catch (const Cancelled&) {
+        firstCancelled = true;
+      } catch (...) {
+      }
+    }
+    if (firstCancelled) std::rethrow_exception(secondError);
+  }
   if (firstError) std::rethrow_exception(firstError);
   if (secondError) std::rethrow_exception(secondError);
+  progress.Report(1.0);  // both done (the last report may have been before the worker's end)
 }
 
 }  // namespace colonmap

@@ -4,6 +4,7 @@
 // Formats: NRRD (default), NIfTI, MetaImage, and a folder holding a DICOM series (GDCM).
 // Origin, spacing and direction are honoured. `what` names the input in error messages.
 #include "Core/Volume.h"
+#include "Core/VolumeShelf.h"
 #include "IO/ImageCheck.h"
 
 #include <functional>
@@ -20,6 +21,16 @@ namespace colonmap::io {
 using NoteSink = std::function<void(const std::string&)>;
 template <typename T>
 Volume<T> ReadImage(const std::string& path, const std::string& what, const NoteSink& note = {});
+
+// In a pipeline run in one process: the volume the stage before kept for `path` on the shelf
+// (Core/VolumeShelf.h), else the file. Without a shelf, ReadImage.
+template <typename T>
+Volume<T> ReadImageKept(VolumeShelf* shelf, const std::string& path, const std::string& what,
+                        const NoteSink& note = {}) {
+  if (shelf)
+    if (std::optional<Volume<T>> kept = shelf->Take<T>(path)) return std::move(*kept);
+  return ReadImage<T>(path, what, note);
+}
 
 enum class Compression {
   Fast,  // gzip level 1: label maps and smooth images shrink 10-100x at little cost

@@ -285,7 +285,8 @@ void ItkPrepareForThreads() {
   itk::Image<short, 3>::New();
   itk::MultiThreaderBase::New();
   itk::MultiThreaderBase::GetGlobalDefaultNumberOfThreads();
-  itk::ImageIOFactory::CreateImageIO("prepare.nrrd", itk::ImageIOFactory::FileModeEnum::ReadMode);
+  // Write mode goes by the extension alone (read mode would look for such a file).
+  itk::ImageIOFactory::CreateImageIO("prepare.nrrd", itk::ImageIOFactory::FileModeEnum::WriteMode);
 }
 
 }  // namespace colonmap::io::detail

@@ -13,7 +13,9 @@ void PrepareToolkitsForThreads() {
   detail::ItkPrepareForThreads();
   vtkNew<vtkPolyData> mesh;  // vtkObjectFactory's list, made on the first New()
   vtkNew<vtkXMLPolyDataReader> reader;
-  vtkSMPTools::Initialize();
+  // Makes VTK's threading back end without resetting its thread count (Initialize() would, and
+  // in a host's process that count is the host's).
+  vtkSMPTools::GetEstimatedNumberOfThreads();
 }
 
 }  // namespace colonmap::io

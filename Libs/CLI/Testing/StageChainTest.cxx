@@ -2,6 +2,7 @@
 // progress, records and notes, two jobs side by side, and the host's Cancel reaching both.
 #include "AllTypesXml.h"
 #include "CLI/StageChain.h"
+#include "Core/Error.h"
 #include "Core/RunConcurrently.h"
 
 #include <gtest/gtest.h>
@@ -126,4 +127,29 @@ TEST(StageChain, TheHostsAbortStopsBothJobsPromptly) {
   const double after = std::chrono::duration<double>(Clock::now() - abortedAt).count();
   host.join();
   EXPECT_LT(after, 0.2) << "both jobs should stop at their next report";
+}
+
+TEST(StageChain, AFailingJobStopsTheOtherAndItsErrorIsReported) {
+  const std::string xml = AllTypesXml();
+  RecordingSink sink;
+  auto endless = [&](ProgressSink& s) {
+    StageChain chain(s, {{"endless", 1.0}});
+    chain.Run("endless", "AllTypes", xml.c_str(), &EndlessBody, kArgs);
+  };
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point failedAt;
+  auto failing = [&](ProgressSink&) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    failedAt = Clock::now();
+    throw Error("the prone scan cannot be read");
+  };
+  try {
+    RunConcurrently(endless, failing, sink);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "the prone scan cannot be read");  // the worker's, not the stop it caused
+  } catch (const Cancelled&) {
+    ADD_FAILURE() << "the first job's stop was reported instead of the worker's error";
+  }
+  EXPECT_LT(std::chrono::duration<double>(Clock::now() - failedAt).count(), 0.2);
 }

@@ -274,3 +274,38 @@ TEST(ImageIO, CheckImageFileReadsNoVoxelsAndSaysWhatReadImageSays) {
             "input CT '" + path("four.nrrd") + "': is a 4-D image (2 x 2 x 2 x 3 voxels), not a 3-D volume");
   fs::remove_all(dir);
 }
+
+// A pipeline's stages in one process hand volumes on in memory (Core/VolumeShelf.h): only the
+// files the pipeline expects are kept, each for as many reads as it said, converted to the type
+// asked for as a reader would, the last read taking it off the shelf; the rest come from the file.
+TEST(ImageIO, ShelfHandsOnExpectedVolumesAndFallsBackToTheFile) {
+  const fs::path dir = TempDir("shelf");
+  Volume<unsigned char> label;
+  label.size = {{3, 2, 2}};
+  label.spacing = {0.7, 0.7, 1.0};
+  label.Allocate(0);
+  label.voxels[4] = 1;
+  const std::string kept = (dir / "lumen.nrrd").string(), notKept = (dir / "other.nrrd").string();
+  io::WriteImage(label, kept, "label");
+  Volume<unsigned char> other = label;
+  other.voxels[5] = 2;
+  io::WriteImage(other, notKept, "label");
+  // In memory the kept volume differs from its file, so where each read came from shows.
+  Volume<unsigned char> inMemory = label;
+  inMemory.voxels[0] = 7;
+
+  VolumeShelf shelf;
+  shelf.Expect(kept, 2);
+  shelf.Put(kept, inMemory);
+  shelf.Put(notKept, other);  // not expected: not kept
+  const Volume<float> first = io::ReadImageKept<float>(&shelf, kept, "label");
+  EXPECT_EQ(first.voxels[0], 7.0f);  // from the shelf, as float
+  EXPECT_EQ(first.voxels[4], 1.0f);
+  EXPECT_TRUE(first.spacing.isApprox(label.spacing));
+  const Volume<unsigned char> second = io::ReadImageKept<unsigned char>(&shelf, kept, "label");
+  EXPECT_EQ(second.voxels, inMemory.voxels);  // the second and last expected read
+  EXPECT_EQ(io::ReadImageKept<unsigned char>(&shelf, kept, "label").voxels, label.voxels);  // now the file
+  EXPECT_EQ(io::ReadImageKept<unsigned char>(&shelf, notKept, "label").voxels, other.voxels);
+  EXPECT_EQ(io::ReadImageKept<unsigned char>(nullptr, kept, "label").voxels, label.voxels);
+  fs::remove_all(dir);
+}

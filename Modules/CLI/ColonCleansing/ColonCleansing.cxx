@@ -34,6 +34,7 @@ void Run(cli::ModuleContext& ctx) {
   ctx.progress.StartStage("Writing", "writing the cleansed CT");
   // Uncompressed: CT noise makes gzip slow for little gain (see docs/performance.md).
   io::WriteImage(r.cleansed, outputTemp, "cleansed CT", io::Compression::None);
+  if (ctx.shelf) ctx.shelf->Put(ctx.args.GetString("outputCT"), r.cleansed);  // for the next stages
   ctx.progress.Report(0.8);  // also a poll of Cancel between the two files
   if (wantLabel) io::WriteImage(r.tagged, labelTemp, "tagged label");
   ctx.progress.EndStage();

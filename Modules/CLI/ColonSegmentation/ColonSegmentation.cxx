@@ -34,7 +34,7 @@ void Run(cli::ModuleContext& ctx) {
   ctx.progress.Plan({{"Reading", 2}, {"Segmentation", 10}, {"Writing", 1}});
 
   ctx.progress.StartStage("Reading", "reading the CT");
-  const Volume<short> ct = io::ReadImage<short>(input, "input CT", ctx.ReaderNotes());
+  const Volume<short> ct = io::ReadImageKept<short>(ctx.shelf, input, "input CT", ctx.ReaderNotes());
   ctx.progress.EndStage();
 
   ctx.progress.StartStage("Segmentation", "air components, colon selection, topology-preserving growth");
@@ -48,10 +48,13 @@ void Run(cli::ModuleContext& ctx) {
 
   ctx.progress.StartStage("Writing", "writing the label map");
   io::WriteImage(s.label, staged, "output label map");
+  if (ctx.shelf) ctx.shelf->Put(output, s.label);  // for the next stage
   ctx.progress.Report(0.5);  // also a poll of Cancel between the two files
-  if (!stagedBridge.empty())
-    io::WriteImage(s.bridgeLabel.voxels.empty() ? s.label.Like<unsigned char>(0) : s.bridgeLabel, stagedBridge,
-                   "virtual lumen label map");
+  if (!stagedBridge.empty()) {
+    const Volume<unsigned char> bridge = s.bridgeLabel.voxels.empty() ? s.label.Like<unsigned char>(0) : s.bridgeLabel;
+    io::WriteImage(bridge, stagedBridge, "virtual lumen label map");
+    if (ctx.shelf) ctx.shelf->Put(bridgeOutput, bridge);
+  }
   ctx.progress.EndStage();
 
   // Report: the kept component, then every dropped one of 1 ml or more (the rest counted).

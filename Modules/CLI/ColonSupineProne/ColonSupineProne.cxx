@@ -9,6 +9,7 @@
 #include "CLI/StageChain.h"
 #include "Core/Error.h"
 #include "Core/RunConcurrently.h"
+#include "Core/VolumeShelf.h"
 #include "IO/ImageCheck.h"
 #include "IO/MarkupsIO.h"
 #include "IO/NodeFiles.h"
@@ -24,6 +25,7 @@
 #include <chrono>
 #include <filesystem>
 #include <regex>
+#include <set>
 #include <tuple>
 
 COLONMAP_DECLARE_MODULE(ColonCleansing)
@@ -54,6 +56,7 @@ struct StageModule {
 const char* const kScans[2] = {"supine", "prone"};
 // The host's progress stages that run both scans' jobs (Pipeline::RunBoth).
 const char* const kScansStage = "scans: cleansing, segmentation, surface";
+const char* const kLabelMapsStage = "scans: surface";  // --labelMaps: no cleansing, no segmentation
 const char* const kFlatteningStage = "flattening of both scans";
 
 struct Options {
@@ -122,7 +125,7 @@ class Pipeline {
       return [&, k](ProgressSink& sink) {
         std::vector<std::pair<std::string, double>> plan;
         for (const Step& s : jobs[k]) plan.emplace_back(s.name, s.weight);
-        cli::StageChain chain(sink, plan, [this] { return ctx_.progress.AbortRequested(); });
+        cli::StageChain chain(sink, plan, [this] { return ctx_.progress.AbortRequested(); }, &shelf_);
         try {
           for (const Step& s : jobs[k]) chain.Run(s.name, s.module.name, s.module.xml, s.module.body, s.args);
         } catch (...) {
@@ -145,6 +148,9 @@ class Pipeline {
     } catch (const Error& e) {
       PrintNotes(notes);
       throw Error(ctx_.outputs.UserNames(e.what()));
+    } catch (...) {  // Cancel, out of memory: what the finished steps said still counts
+      PrintNotes(notes);
+      throw;
     }
     PrintNotes(notes);
     for (const auto& job : records)
@@ -168,13 +174,14 @@ class Pipeline {
     total_ += seconds;
   }
 
-  // The jobs' notes, supine first; a note the prone job repeats word for word (both scans the
-  // same file, say) is printed once.
+  // The jobs' notes, supine first, each line saying its scan (the stages' own notes do not).
   void PrintNotes(const std::array<std::vector<std::string>, 2>& notes) {
-    for (const auto& line : notes[0]) ctx_.progress.Note(line);
-    for (const auto& line : notes[1])
-      if (std::find(notes[0].begin(), notes[0].end(), line) == notes[0].end()) ctx_.progress.Note(line);
+    for (int k = 0; k < 2; ++k)
+      for (const auto& line : notes[k]) ctx_.progress.Note(std::string(kScans[k]) + ": " + line);
   }
+
+  // Volumes one stage hands to the next in memory (the files are written all the same).
+  VolumeShelf& Shelf() { return shelf_; }
 
   const std::map<std::string, std::string>& Folders() const { return folders_; }
   const json& Stages() const { return stages_; }
@@ -187,6 +194,7 @@ class Pipeline {
   std::map<std::string, std::string> folders_;
   json stages_ = json::array();
   json blocks_ = json::array();
+  VolumeShelf shelf_;
   double total_ = 0.0;  // wall seconds: stages run alone plus blocks
 };
 
@@ -266,7 +274,8 @@ std::vector<std::pair<std::string, double>> Plan(const Options& o) {
   // The two scans' jobs are one stage each (Pipeline::RunBoth): cleansing 2, segmentation 5,
   // surface 9 per scan; flattening 1 per scan.
   std::vector<std::pair<std::string, double>> plan;
-  plan.emplace_back(kScansStage, o.labelMaps ? 18.0 : 32.0);
+  if (o.labelMaps) plan.emplace_back(kLabelMapsStage, 18.0);
+  else plan.emplace_back(kScansStage, 32.0);
   plan.emplace_back("landmarks", 4.0);
   plan.emplace_back(kFlatteningStage, 2.0);
   plan.emplace_back("registration", 2.0);
@@ -386,13 +395,19 @@ void BuildReportOnly(cli::ModuleContext& ctx, const Options& o, const std::strin
     if (records.value("notes", json()).is_array()) notes = records["notes"];
     if (records.value("stageBlocks", json()).is_array()) blocks = records["stageBlocks"];
   }
-  // As the whole run counts it: the stages run alone plus the blocks of both scans' jobs.
+  // As the whole run counts it: the stages run alone plus the blocks of both scans' jobs; a
+  // stage of a block the records do not give counts on its own.
   double totalSeconds = 0.0;
-  for (const auto& s : stages)
-    if (s.is_object() && !s.contains("block") && s.value("seconds", json()).is_number())
-      totalSeconds += s["seconds"].get<double>();
+  std::set<std::string> blockNames;
   for (const auto& b : blocks)
-    if (b.is_object() && b.value("seconds", json()).is_number()) totalSeconds += b["seconds"].get<double>();
+    if (b.is_object() && b.value("seconds", json()).is_number()) {
+      totalSeconds += b["seconds"].get<double>();
+      blockNames.insert(b.value("name", std::string()));
+    }
+  for (const auto& s : stages)
+    if (s.is_object() && s.value("seconds", json()).is_number() &&
+        !(s.contains("block") && s["block"].is_string() && blockNames.count(s["block"].get<std::string>())))
+      totalSeconds += s["seconds"].get<double>();
   json findingsTable = json::array();
   if (!o.findings.empty()) {
     const fs::path mapped = out / "transfer" / "findings_prone.mrk.json";
@@ -476,6 +491,10 @@ void Run(cli::ModuleContext& ctx) {
       // A colon in pieces (collapsed stretches) is bridged by virtual lumen, and its wall marked
       // (issue 21); a colon in one piece gives the same files as without.
       const std::string virtualLumen = p.In("segmentation", scan + "_virtual.nrrd");
+      // Handed on in memory: the cleansed CT to segmentation and surface, the labels to surface.
+      p.Shelf().Expect(cleansed, 2);
+      p.Shelf().Expect(lumen, 1);
+      p.Shelf().Expect(virtualLumen, 1);
       scanJobs[k].push_back({"cleansing " + scan, COLONMAP_STAGE(ColonCleansing),
                              {o.scan[k], cleansed, "--taggedLabel", p.In("cleansing", scan + "_tagged.nrrd")}, 2.0});
       scanJobs[k].push_back({"segmentation " + scan, COLONMAP_STAGE(ColonSegmentation),
@@ -492,7 +511,7 @@ void Run(cli::ModuleContext& ctx) {
     flatJobs[k].push_back({"flattening " + scan, COLONMAP_STAGE(ColonFlattening),
                            {p.In("landmarks", scan), p.In("flattening", scan)}, 1.0});
   }
-  p.RunBoth(kScansStage, scanJobs);
+  p.RunBoth(o.labelMaps ? kLabelMapsStage : kScansStage, scanJobs);
   // Both scans at once: their flexures are chosen together (the same anatomy in both).
   p.Run("landmarks", COLONMAP_STAGE(ColonLandmarks),
         {p.In("surface", "supine_surface.vtp"), p.In("landmarks", "supine"), "--pairedSurface",
