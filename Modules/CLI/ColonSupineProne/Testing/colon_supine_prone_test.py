@@ -157,6 +157,15 @@ t.check(not os.path.exists(os.path.join(out4, "cleansing")) and not os.path.exis
 t.check(os.path.isfile(os.path.join(out4, "registration.vtp")), "label maps: registration written")
 s4 = json.load(open(os.path.join(out4, "summary.json"))) if os.path.exists(os.path.join(out4, "summary.json")) else {}
 t.check(any("label maps" in n for n in s4.get("notes", [])), "label maps: the report says why there are no views")
+# The surfaces side by side and one after the other: the same files here too.
+out4s = os.path.join(work, "out-labels-sequential")
+r4s, _ = pipeline(out4s, "--labelMaps", "--findings", os.path.join(phantom, "supine_polyps.mrk.json"), "--sequential",
+                  inputs=(os.path.join(labels, "supine.nrrd"), os.path.join(labels, "prone.nrrd")))
+t.check(r4s.returncode == 0, "label maps, sequential: " + r4s.stderr)
+differ4 = [f for f in files(out4) if f not in timed and (not os.path.exists(os.path.join(out4s, f)) or
+           open(os.path.join(out4, f), "rb").read() != open(os.path.join(out4s, f), "rb").read())]
+t.check(files(out4) == files(out4s) and not differ4, f"label maps: side by side = sequential, byte for byte ({differ4})")
+t.check([b.get("name") for b in s4.get("stageBlocks", [])][:1] == ["scans: surface"], "label maps: the block is the surfaces'")
 
 # 5. Bad inputs: one line on stderr naming the input, non-zero exit, nothing left.
 cases = [
