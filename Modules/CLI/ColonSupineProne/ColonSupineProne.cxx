@@ -119,6 +119,20 @@ class Pipeline {
     ctx_.progress.StartStage(stage);
     const auto start = std::chrono::steady_clock::now();
     const double cpuStart = cli::ProcessCpuSeconds();
+    const auto records = RunJobs(jobs);
+    for (const auto& job : records)
+      for (const cli::StepRecord& r : job)
+        ctx_.progress.Note("ColonSupineProne: " + r.name + " done in " + cli::FormatFixed(r.seconds, 2) + " s" +
+                           (o_.sideBySide ? " (side by side with the other scan)" : ""));
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double cpuSeconds = cli::ProcessCpuSeconds() - cpuStart;
+    ctx_.progress.EndStage();
+    RecordBlock(stage, records, seconds, cpuSeconds);
+  }
+
+  // The two jobs, side by side or one after the other, into the current stage's progress; their
+  // notes printed (also when one fails); their steps' records.
+  std::array<std::vector<cli::StepRecord>, 2> RunJobs(const std::array<std::vector<Step>, 2>& jobs) {
     std::array<std::vector<cli::StepRecord>, 2> records;
     std::array<std::vector<std::string>, 2> notes;
     auto job = [&](int k) {
@@ -153,13 +167,12 @@ class Pipeline {
       throw;
     }
     PrintNotes(notes);
-    for (const auto& job : records)
-      for (const cli::StepRecord& r : job)
-        ctx_.progress.Note("ColonSupineProne: " + r.name + " done in " + cli::FormatFixed(r.seconds, 2) + " s" +
-                           (o_.sideBySide ? " (side by side with the other scan)" : ""));
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const double cpuSeconds = cli::ProcessCpuSeconds() - cpuStart;
-    ctx_.progress.EndStage();
+    return records;
+  }
+
+  // The block's stage records (each step's own) and its own record (wall and process CPU).
+  void RecordBlock(const std::string& stage, const std::array<std::vector<cli::StepRecord>, 2>& records,
+                   double seconds, double cpuSeconds) {
     json names = json::array();
     for (const auto& job : records)
       for (const cli::StepRecord& r : job) {
