@@ -15,19 +15,14 @@ StageChain::StageChain(ProgressSink& sink, std::vector<std::pair<std::string, do
 std::map<std::string, std::string> StageChain::Run(const std::string& step, const char* moduleName, const char* xml,
                                                    ModuleBody body, const std::vector<std::string>& arguments) {
   if (AbortRequested()) throw Cancelled();  // between steps too: the last one may have ended in a long write
-  double total = 0.0, before = 0.0, weight = 0.0;
-  bool seen = false;
+  // Steps run in the plan's order: each takes its share after the one before.
+  double total = 0.0, weight = 0.0;
   for (const auto& [name, w] : plan_) {
     total += w;
-    if (name == step && !seen) {
-      weight = w;
-      seen = true;
-    } else if (!seen) {
-      before += w;
-    }
+    if (name == step) weight = w;
   }
-  from_ = total > 0 && seen ? before / total : to_;
-  to_ = total > 0 && seen ? (before + weight) / total : to_;
+  from_ = to_;
+  to_ = total > 0 ? from_ + weight / total : from_;
   Report(0.0);
   StepRecord record{step, moduleName, 0.0, 0.0, {}};
   const auto start = std::chrono::steady_clock::now();

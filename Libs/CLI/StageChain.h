@@ -3,8 +3,9 @@
 // supine and the prone scan's cleansing, segmentation and surface side by side with
 // Core/RunConcurrently.h). The chain runs nested modules one after the other on whichever thread
 // calls it: each step's progress fills its share of the job's ProgressSink, the host's Abort
-// reaches it through that sink (RunConcurrently's sinks throw Cancelled), its notes are kept for
-// the caller to print from the host's thread, and each step leaves a record.
+// reaches it directly (hostAbort) and through that sink (RunConcurrently's sinks throw Cancelled
+// when the other job stopped or failed), its notes are kept for the caller to print from the
+// host's thread, and each step leaves a record.
 #include "CLI/ModuleRunner.h"
 
 #include <functional>
@@ -27,7 +28,8 @@ struct StepRecord {
 
 class StageChain : public ProgressParent {
  public:
-  // plan: the steps' names and relative weights, in order (a step not named shares nothing).
+  // plan: the steps' names and relative weights, in the order they run (a step not named shares
+  // nothing).
   // hostAbort (optional): the host's Abort, read directly so that a job on a worker thread stops
   // as soon as the one on the host's thread, not after it.
   // shelf (optional): the pipeline's volumes handed on in memory (Core/VolumeShelf.h).
@@ -56,7 +58,8 @@ class StageChain : public ProgressParent {
   double from_ = 0.0, to_ = 0.0;  // the current step's share of the job
   double last_ = 0.0;             // the last fraction of the job passed on
   std::vector<StepRecord> records_;
-  std::mutex notesMutex_;
+  std::mutex notesMutex_;  // notes come from the job's thread; the lock keeps a module that
+                           // notes from a thread of its own safe too
   std::vector<std::string> notes_;
 };
 

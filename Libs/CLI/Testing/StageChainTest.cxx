@@ -4,14 +4,12 @@
 #include "CLI/StageChain.h"
 #include "Core/Error.h"
 #include "Core/RunConcurrently.h"
+#include "Core/TimeLimit.h"
 
 #include <gtest/gtest.h>
 
 #include <atomic>
 #include <chrono>
-#include <fstream>
-#include <mutex>
-#include <sstream>
 #include <thread>
 
 using namespace colonmap;
@@ -126,7 +124,7 @@ TEST(StageChain, TheHostsAbortStopsBothJobsPromptly) {
   EXPECT_THROW(RunConcurrently(job, job, sink), Cancelled);
   const double after = std::chrono::duration<double>(Clock::now() - abortedAt).count();
   host.join();
-  EXPECT_LT(after, 0.2) << "both jobs should stop at their next report";
+  EXPECT_LT(after, 0.2 * kTimeLimitScale) << "both jobs should stop at their next report";
 }
 
 TEST(StageChain, AFailingJobStopsTheOtherAndItsErrorIsReported) {
@@ -151,5 +149,5 @@ TEST(StageChain, AFailingJobStopsTheOtherAndItsErrorIsReported) {
   } catch (const Cancelled&) {
     ADD_FAILURE() << "the first job's stop was reported instead of the worker's error";
   }
-  EXPECT_LT(std::chrono::duration<double>(Clock::now() - failedAt).count(), 0.2);
+  EXPECT_LT(std::chrono::duration<double>(Clock::now() - failedAt).count(), 0.2 * kTimeLimitScale);
 }

@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <exception>
 #include <filesystem>
@@ -92,6 +93,22 @@ bool FlexuresJoint(const io::FlatteningReport& report) {
 
 io::FlatteningReport ReadReport(const fs::path& dir, const std::string& scan) {
   return io::ReadFlatteningReport((dir / "flattening.json").string(), scan + " flattening report");
+}
+
+// The segments (by index) shared out to two threads: the largest first, each to the thread with
+// less so far, so that both end at about the same time.
+std::array<std::vector<std::size_t>, 2> ShareBySize(const std::vector<double>& sizes) {
+  std::vector<std::size_t> order(sizes.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return sizes[a] > sizes[b]; });
+  std::array<std::vector<std::size_t>, 2> share;
+  double load[2] = {0.0, 0.0};
+  for (std::size_t k : order) {
+    const int t = load[0] <= load[1] ? 0 : 1;
+    share[t].push_back(k);
+    load[t] += sizes[k];
+  }
+  return share;
 }
 
 // Concatenates meshes; arrays present with the same width in every part are kept.
@@ -210,18 +227,9 @@ void Run(cli::ModuleContext& ctx) {
   // A segment's error is kept and the job goes on, so that the one reported is the first in
   // segment order, as when they ran one after the other.
   std::vector<std::exception_ptr> failed(present.size());
-  std::vector<std::size_t> share[2];
-  {
-    double load[2] = {0.0, 0.0};
-    std::vector<std::size_t> order(present.size());
-    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return plan[a].second > plan[b].second; });
-    for (std::size_t k : order) {
-      const int t = load[0] <= load[1] ? 0 : 1;
-      share[t].push_back(k);
-      load[t] += plan[k].second;
-    }
-  }
+  std::vector<double> sizes;
+  for (std::size_t k = 0; k < present.size(); ++k) sizes.push_back(plan[k].second);
+  const std::array<std::vector<std::size_t>, 2> share = ShareBySize(sizes);
   auto job = [&](int t) {
     return [&, t](ProgressSink& sink) {
       double total = 0.0, before = 0.0;

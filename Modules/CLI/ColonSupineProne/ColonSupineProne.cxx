@@ -20,7 +20,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include <algorithm>
 #include <array>
 #include <chrono>
 #include <filesystem>
@@ -65,6 +64,16 @@ struct Options {
   bool sideBySide = true;  // the two scans' independent stages on two threads (--sequential: off)
 };
 
+// A module's return parameters as a stage record's "results".
+json ResultsJson(const std::map<std::string, std::string>& results) {
+  json r = json::object();
+  for (const auto& [k, v] : results) r[k] = v;
+  return r;
+}
+
+// Relative weights of a scan's steps in the host's progress (a block's is its steps' sum).
+constexpr double kCleansingWeight = 2.0, kSegmentationWeight = 5.0, kSurfaceWeight = 9.0, kFlatteningWeight = 1.0;
+
 // One step of a scan's job (RunBoth): a stage record's name, the module, its arguments.
 struct Step {
   std::string name;
@@ -103,9 +112,8 @@ class Pipeline {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const double cpuSeconds = cli::ProcessCpuSeconds() - cpuStart;
     ctx_.progress.EndStage();
-    json r = json::object();
-    for (const auto& [k, v] : results) r[k] = v;
-    stages_.push_back({{"name", stage}, {"module", m.name}, {"seconds", seconds}, {"cpuSeconds", cpuSeconds}, {"results", r}});
+    stages_.push_back({{"name", stage}, {"module", m.name}, {"seconds", seconds}, {"cpuSeconds", cpuSeconds},
+                       {"results", ResultsJson(results)}});
     total_ += seconds;
     return results;
   }
@@ -176,10 +184,8 @@ class Pipeline {
     json names = json::array();
     for (const auto& job : records)
       for (const cli::StepRecord& r : job) {
-        json results = json::object();
-        for (const auto& [k, v] : r.results) results[k] = v;
         stages_.push_back({{"name", r.name}, {"module", r.module}, {"seconds", r.seconds},
-                           {"threadCpuSeconds", r.threadCpuSeconds}, {"block", stage}, {"results", results}});
+                           {"threadCpuSeconds", r.threadCpuSeconds}, {"block", stage}, {"results", ResultsJson(r.results)}});
         names.push_back(r.name);
       }
     blocks_.push_back({{"name", stage}, {"stages", names}, {"sideBySide", o_.sideBySide}, {"seconds", seconds},
@@ -284,13 +290,12 @@ void WriteFindingsNodes(cli::ModuleContext& ctx, const std::string& mapped, cons
 }
 
 std::vector<std::pair<std::string, double>> Plan(const Options& o) {
-  // The two scans' jobs are one stage each (Pipeline::RunBoth): cleansing 2, segmentation 5,
-  // surface 9 per scan; flattening 1 per scan.
+  // The two scans' jobs are one stage each (Pipeline::RunBoth), weighing both scans' steps.
   std::vector<std::pair<std::string, double>> plan;
-  if (o.labelMaps) plan.emplace_back(kLabelMapsStage, 18.0);
-  else plan.emplace_back(kScansStage, 32.0);
+  if (o.labelMaps) plan.emplace_back(kLabelMapsStage, 2 * kSurfaceWeight);
+  else plan.emplace_back(kScansStage, 2 * (kCleansingWeight + kSegmentationWeight + kSurfaceWeight));
   plan.emplace_back("landmarks", 4.0);
-  plan.emplace_back(kFlatteningStage, 2.0);
+  plan.emplace_back(kFlatteningStage, 2 * kFlatteningWeight);
   plan.emplace_back("registration", 2.0);
   if (o.views) plan.emplace_back("flat views", 1.0);
   if (!o.findings.empty()) plan.emplace_back("transfer findings", 0.2);
@@ -509,20 +514,20 @@ void Run(cli::ModuleContext& ctx) {
       p.Shelf().Expect(lumen, 1);
       p.Shelf().Expect(virtualLumen, 1);
       scanJobs[k].push_back({"cleansing " + scan, COLONMAP_STAGE(ColonCleansing),
-                             {o.scan[k], cleansed, "--taggedLabel", p.In("cleansing", scan + "_tagged.nrrd")}, 2.0});
+                             {o.scan[k], cleansed, "--taggedLabel", p.In("cleansing", scan + "_tagged.nrrd")}, kCleansingWeight});
       scanJobs[k].push_back({"segmentation " + scan, COLONMAP_STAGE(ColonSegmentation),
-                             {cleansed, lumen, "--bridgePieces", "--bridgeLabel", virtualLumen}, 5.0});
+                             {cleansed, lumen, "--bridgePieces", "--bridgeLabel", virtualLumen}, kSegmentationWeight});
       scanJobs[k].push_back({"surface " + scan, COLONMAP_STAGE(ColonSurface),
                              {lumen, surface, "--referenceCT", cleansed, "--targetFaces", o.targetFaces, "--virtualLabel",
                               virtualLumen},
-                             9.0});
+                             kSurfaceWeight});
       volume[k] = cleansed;
     } else {
       scanJobs[k].push_back({"surface " + scan, COLONMAP_STAGE(ColonSurface),
-                             {o.scan[k], surface, "--labelValue", o.labelValue, "--targetFaces", o.targetFaces}, 9.0});
+                             {o.scan[k], surface, "--labelValue", o.labelValue, "--targetFaces", o.targetFaces}, kSurfaceWeight});
     }
     flatJobs[k].push_back({"flattening " + scan, COLONMAP_STAGE(ColonFlattening),
-                           {p.In("landmarks", scan), p.In("flattening", scan)}, 1.0});
+                           {p.In("landmarks", scan), p.In("flattening", scan)}, kFlatteningWeight});
   }
   p.RunBoth(o.labelMaps ? kLabelMapsStage : kScansStage, scanJobs);
   // Both scans at once: their flexures are chosen together (the same anatomy in both).
