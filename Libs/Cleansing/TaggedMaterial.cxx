@@ -59,14 +59,16 @@ struct Region {
 
 TaggedMaterial FindTaggedMaterial(const Volume<short>& ct, const CleansingParameters& p, ProgressSink& progress) {
   TaggedMaterial result;
-  result.core = ct.Like<unsigned char>(0);
+  SubProgress coreStep(progress, 0.0, 0.03), visitedStep(progress, 0.03, 0.06);
+  result.core = ct.Like<unsigned char>(0, &coreStep);
   const long reach = std::max(1, p.partialVolumeVoxels);
-  std::vector<unsigned char> visited(ct.NumberOfVoxels(), 0);
+  std::vector<unsigned char> visited;
+  FillReporting(visited, ct.NumberOfVoxels(), static_cast<unsigned char>(0), &visitedStep);
   std::vector<Region> flat;
   std::vector<std::size_t> queue;
   const std::size_t nx = ct.size[0], ny = ct.size[1], nz = ct.size[2];
   for (std::size_t k = 0; k < nz; ++k) {
-    progress.Report(0.9 * double(k) / double(nz));
+    progress.Report(0.06 + 0.84 * double(k) / double(nz));
     for (std::size_t j = 0; j < ny; ++j) {
       for (std::size_t i = 0; i < nx; ++i) {
         const std::size_t start = ct.Offset(i, j, k);
@@ -99,7 +101,7 @@ TaggedMaterial FindTaggedMaterial(const Volume<short>& ct, const CleansingParame
               ++region.contacts;
             }
           }
-          if (region.voxels.size() % 65536 == 0) progress.Report(0.9 * double(k) / double(nz));
+          if (region.voxels.size() % 65536 == 0) progress.Report(0.06 + 0.84 * double(k) / double(nz));
         }
         // Tagged fluid is several hundred HU through and through; a region barely above the
         // threshold is partial volume of bone or vessels.

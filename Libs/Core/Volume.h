@@ -1,6 +1,8 @@
 #pragma once
 // A 3D image on a regular grid in LPS millimetres, free of ITK so that the math layer and its
 // tests compile fast. Conversion to and from itk::Image lives only in Libs/IO.
+#include "Core/Cancel.h"
+
 #include <Eigen/Core>
 #include <array>
 #include <cstddef>
@@ -24,15 +26,31 @@ struct Volume {
   T& At(std::size_t i, std::size_t j, std::size_t k) { return voxels[Offset(i, j, k)]; }
   const T& At(std::size_t i, std::size_t j, std::size_t k) const { return voxels[Offset(i, j, k)]; }
 
-  // An image of pixel type U on the same grid, every voxel set to `value`.
+  // The grid (size, spacing, origin, direction) with pixel type U and no voxels yet.
   template <typename U>
-  Volume<U> Like(const U& value = U()) const {
+  Volume<U> EmptyLike() const {
     Volume<U> v;
     v.size = size;
     v.spacing = spacing;
     v.origin = origin;
     v.direction = direction;
+    return v;
+  }
+
+  // An image of pixel type U on the same grid, every voxel set to `value`.
+  template <typename U>
+  Volume<U> Like(const U& value = U()) const {
+    Volume<U> v = EmptyLike<U>();
     v.Allocate(value);
+    return v;
+  }
+
+  // The same, filled piece by piece with `progress` polled between pieces (a CT-sized image
+  // takes a good part of a second to allocate and touch).
+  template <typename U>
+  Volume<U> Like(const U& value, ProgressSink* progress) const {
+    Volume<U> v = EmptyLike<U>();
+    FillReporting(v.voxels, NumberOfVoxels(), value, progress);
     return v;
   }
 

@@ -13,6 +13,7 @@
 #include "Core/Volume.h"
 
 #include <map>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -29,41 +30,60 @@ class VolumeShelf {
     entries_[path].reads = reads;
   }
 
+  // Keeps the volume when `path` is expected: a stage hands over a volume it no longer needs
+  // (moved in, no CT-sized copy).
   template <typename T>
-  void Put(const std::string& path, const Volume<T>& volume) {
+  void Put(const std::string& path, Volume<T>&& volume) {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      const auto it = entries_.find(path);
+      if (it == entries_.end() || it->second.reads <= 0) return;
+    }
+    auto kept = std::make_shared<Kept>(std::move(volume));
     const std::lock_guard<std::mutex> lock(mutex_);
     const auto it = entries_.find(path);
-    if (it != entries_.end() && it->second.reads > 0) it->second.volume = volume;
+    if (it != entries_.end() && it->second.reads > 0) it->second.volume = std::move(kept);
   }
 
+  // The volume kept for `path` as type T, or nothing. The copy or conversion runs outside the
+  // lock, in pieces with `progress` (when given) polled between them.
   template <typename T>
-  std::optional<Volume<T>> Take(const std::string& path) {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    const auto it = entries_.find(path);
-    if (it == entries_.end() || it->second.reads <= 0 || std::holds_alternative<std::monostate>(it->second.volume))
-      return std::nullopt;
-    const bool last = --it->second.reads == 0;
+  std::optional<Volume<T>> Take(const std::string& path, ProgressSink* progress = nullptr) {
+    std::shared_ptr<Kept> kept;
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      const auto it = entries_.find(path);
+      if (it == entries_.end() || it->second.reads <= 0 || !it->second.volume) return std::nullopt;
+      kept = it->second.volume;
+      if (--it->second.reads == 0) entries_.erase(it);  // the last read: this call holds the only reference
+    }
+    const bool last = kept.use_count() == 1;
     std::optional<Volume<T>> out;
     std::visit(
-        [&](auto& kept) {
-          using K = std::decay_t<decltype(kept)>;
+        [&](auto& volume) {
+          using K = std::decay_t<decltype(volume)>;
           if constexpr (std::is_same_v<K, Volume<T>>) {
-            out = last ? std::move(kept) : kept;
-          } else if constexpr (!std::is_same_v<K, std::monostate>) {
-            Volume<T> v = kept.template Like<T>();
-            for (std::size_t i = 0; i < kept.voxels.size(); ++i) v.voxels[i] = static_cast<T>(kept.voxels[i]);
-            out = std::move(v);
+            if (last) {
+              out = std::move(volume);
+              return;
+            }
           }
+          Volume<T> v = volume.template EmptyLike<T>();
+          v.voxels.reserve(volume.voxels.size());
+          ForPieces(volume.voxels.size(), kPollPiece, progress, [&](std::size_t b, std::size_t e) {
+            for (std::size_t i = b; i < e; ++i) v.voxels.push_back(static_cast<T>(volume.voxels[i]));
+          });
+          out = std::move(v);
         },
-        it->second.volume);
-    if (last) entries_.erase(it);
+        *kept);
     return out;
   }
 
  private:
+  using Kept = std::variant<Volume<short>, Volume<unsigned char>, Volume<float>>;
   struct Entry {
     int reads = 0;
-    std::variant<std::monostate, Volume<short>, Volume<unsigned char>, Volume<float>> volume;
+    std::shared_ptr<Kept> volume;  // shared with a Take that copies it outside the lock
   };
   std::mutex mutex_;
   std::map<std::string, Entry> entries_;

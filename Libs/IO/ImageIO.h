@@ -26,9 +26,9 @@ Volume<T> ReadImage(const std::string& path, const std::string& what, const Note
 // (Core/VolumeShelf.h), else the file. Without a shelf, ReadImage.
 template <typename T>
 Volume<T> ReadImageKept(VolumeShelf* shelf, const std::string& path, const std::string& what,
-                        const NoteSink& note = {}) {
+                        const NoteSink& note = {}, ProgressSink* progress = nullptr) {
   if (shelf)
-    if (std::optional<Volume<T>> kept = shelf->Take<T>(path)) return std::move(*kept);
+    if (std::optional<Volume<T>> kept = shelf->Take<T>(path, progress)) return std::move(*kept);
   return ReadImage<T>(path, what, note);
 }
 

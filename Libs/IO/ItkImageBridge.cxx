@@ -200,23 +200,50 @@ void NoteFlippedAxes(const std::string& path, const std::string& what, std::vect
     g.notes.push_back(what + " '" + path + "': its axes form a left-handed frame (one axis stored flipped): read as stored");
 }
 
-// The one read path of the header-only check and the full read, so that a problem is found by
-// the same code and said in the same words by both. Without `voxels`, ITK reads the header only.
+// Reads the voxels straight into `into` through the file's ImageIO when they need no conversion
+// (the pixel type T, one component, three axes): no second CT-sized buffer (on this machine new
+// memory costs about 1 s per GB to fault in). Returns false when ImageFileReader must convert.
 template <typename T>
-typename ItkImage<T>::Pointer ReadItkImage(const std::string& path, const std::string& what, bool voxels, ImageGeometry& g) {
+bool ReadVoxelsDirectly(itk::ImageIOBase& io, std::vector<T>& into) {
+  if (io.GetComponentType() != itk::ImageIOBase::MapPixelType<T>::CType || io.GetNumberOfComponents() != 1 ||
+      io.GetNumberOfDimensions() != 3)
+    return false;
+  itk::ImageIORegion region(3);
+  std::size_t n = 1;
+  for (unsigned d = 0; d < 3; ++d) {
+    region.SetIndex(d, 0);
+    region.SetSize(d, io.GetDimensions(d));
+    n *= io.GetDimensions(d);
+  }
+  io.SetIORegion(region);
+  into.resize(n);
+  io.Read(into.data());
+  return true;
+}
+
+// The one read path of the header-only check and the full read, so that a problem is found by
+// the same code and said in the same words by both. Without `voxels`, ITK reads the header only;
+// with `into`, the voxels go there (directly when they can, else through the returned image).
+template <typename T>
+typename ItkImage<T>::Pointer ReadItkImage(const std::string& path, const std::string& what, bool voxels, ImageGeometry& g,
+                                           std::vector<T>* into = nullptr) {
   const std::vector<int> negativeAxes = DoorChecks(path, what);
   typename ItkImage<T>::Pointer image;
   try {
     std::error_code ec;
     if (!IsHostPath(path) && fs::is_directory(path, ec)) {
       image = ReadDicomSeries<T>(path, what, voxels);
+      into = nullptr;
     } else {
       auto reader = itk::ImageFileReader<ItkImage<T>>::New();
       reader->SetFileName(path);
       reader->UpdateOutputInformation();
       CheckThreeAxes(path, what, *reader->GetImageIO());
-      if (voxels) reader->Update();
-      image = reader->GetOutput();
+      if (voxels && !(into && ReadVoxelsDirectly<T>(*reader->GetImageIO(), *into))) {
+        reader->Update();
+        into = nullptr;  // the voxels are in the image
+      }
+      image = reader->GetOutput();  // its geometry is read either way
     }
   } catch (const itk::ExceptionObject& e) {
     throw ReadError(path, what, e);
@@ -224,6 +251,7 @@ typename ItkImage<T>::Pointer ReadItkImage(const std::string& path, const std::s
   g = GeometryOf<T>(*image);
   NoteFlippedAxes(path, what, negativeAxes, g);
   CheckGeometry(path, what, g);
+  if (voxels && into) return nullptr;  // read directly
   return image;
 }
 
@@ -231,7 +259,8 @@ typename ItkImage<T>::Pointer ReadItkImage(const std::string& path, const std::s
 
 template <typename T>
 void ItkReadImage(const std::string& path, const std::string& what, ImageGeometry& g, std::vector<T>& voxels) {
-  const auto image = ReadItkImage<T>(path, what, /*voxels=*/true, g);
+  const auto image = ReadItkImage<T>(path, what, /*voxels=*/true, g, &voxels);
+  if (!image) return;  // read straight into `voxels`
   const std::size_t n = g.size[0] * g.size[1] * g.size[2];
   voxels.assign(image->GetBufferPointer(), image->GetBufferPointer() + n);
 }

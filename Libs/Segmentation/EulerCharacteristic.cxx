@@ -44,7 +44,7 @@ std::array<int, 256> ShareTable() {
 
 }  // namespace
 
-std::int64_t EulerCharacteristic(const Volume<unsigned char>& mask) {
+std::int64_t EulerCharacteristic(const Volume<unsigned char>& mask, ProgressSink* progress) {
   static const std::array<int, 256> share = ShareTable();
   const long n0 = static_cast<long>(mask.size[0]), n1 = static_cast<long>(mask.size[1]),
              n2 = static_cast<long>(mask.size[2]);
@@ -52,7 +52,8 @@ std::int64_t EulerCharacteristic(const Volume<unsigned char>& mask) {
     return j >= 0 && k >= 0 && j < n1 && k < n2 ? &mask.voxels[static_cast<std::size_t>(n0 * (j + n1 * k))] : nullptr;
   };
   std::int64_t sum = 0;
-  for (long k = 0; k <= n2; ++k)
+  for (long k = 0; k <= n2; ++k) {
+    if (progress && k % 8 == 0) progress->Report(double(k) / double(n2 + 1));
     for (long j = 0; j <= n1; ++j) {
       // The four voxel rows around this line of lattice vertices: bit 1 (j - 1), bit 2 (k - 1).
       const unsigned char* r[4] = {row(j, k), row(j - 1, k), row(j, k - 1), row(j - 1, k - 1)};
@@ -72,6 +73,8 @@ std::int64_t EulerCharacteristic(const Volume<unsigned char>& mask) {
         sum += share[static_cast<std::size_t>(o)];
       }
     }
+  }
+  if (progress) progress->Report(1.0);
   return sum / 8;
 }
 

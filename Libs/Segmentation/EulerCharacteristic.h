@@ -4,13 +4,14 @@
 // vertices, edges, faces and cubes of that cubical complex. chi = (components) - (handles) +
 // (cavities): 1 for a solid ball, 0 for a solid torus, 2 for a ball with one cavity. An
 // independent check of the simple-point growth (which uses no such counting).
+#include "Core/Cancel.h"
 #include "Core/Volume.h"
 
 #include <cstdint>
 
 namespace colonmap::segmentation {
 
-// Voxels with a non-zero value form the set.
-std::int64_t EulerCharacteristic(const Volume<unsigned char>& mask);
+// Voxels with a non-zero value form the set. `progress`, when given, is polled every few slices.
+std::int64_t EulerCharacteristic(const Volume<unsigned char>& mask, ProgressSink* progress = nullptr);
 
 }  // namespace colonmap::segmentation

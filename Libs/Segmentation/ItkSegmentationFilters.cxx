@@ -89,16 +89,16 @@ void Run(itk::ProcessObject* filter, ProgressSink& progress, const char* what) {
 
 }  // namespace
 
-std::uint32_t LabelComponents26(const Grid& grid, const unsigned char* mask, std::vector<std::uint32_t>& labels,
-                                ProgressSink& progress) {
+std::uint32_t ItkLabelComponents26(const Grid& grid, const unsigned char* mask, std::vector<std::uint32_t>& labels,
+                                   ProgressSink& progress) {
   using LabelImage = itk::Image<std::uint32_t, 3>;
   auto filter = itk::ConnectedComponentImageFilter<MaskImage, LabelImage>::New();
   filter->SetInput(Wrap(grid, mask));
   filter->FullyConnectedOn();
   filter->SetBackgroundValue(0);
-  Run(filter, progress, "connected components");
-  const LabelImage* out = filter->GetOutput();
-  labels.assign(out->GetBufferPointer(), out->GetBufferPointer() + grid.Count());
+  SubProgress filtering(progress, 0.0, 0.9), copying(progress, 0.9, 1.0);
+  Run(filter, filtering, "connected components");
+  AssignReporting(filter->GetOutput()->GetBufferPointer(), grid.Count(), labels, &copying);
   return static_cast<std::uint32_t>(filter->GetObjectCount());
 }
 
@@ -107,9 +107,9 @@ void FillCavities6(const Grid& grid, std::vector<unsigned char>& mask, ProgressS
   filter->SetInput(Wrap(grid, mask.data()));
   filter->SetForegroundValue(1);
   filter->FullyConnectedOff();  // holes are face-connected background: the 6 of (26,6)
-  Run(filter, progress, "cavity filling");
-  const unsigned char* out = filter->GetOutput()->GetBufferPointer();
-  std::copy(out, out + grid.Count(), mask.begin());
+  SubProgress filtering(progress, 0.0, 0.9), copying(progress, 0.9, 1.0);
+  Run(filter, filtering, "cavity filling");
+  CopyReporting(filter->GetOutput()->GetBufferPointer(), grid.Count(), mask.data(), &copying);
 }
 
 void InsideDistance(const Grid& grid, const unsigned char* mask, std::vector<float>& distance,
@@ -121,10 +121,14 @@ void InsideDistance(const Grid& grid, const unsigned char* mask, std::vector<flo
   filter->InsideIsPositiveOn();
   filter->SquaredDistanceOff();
   filter->UseImageSpacingOn();
-  Run(filter, progress, "distance map");
+  SubProgress filtering(progress, 0.0, 0.9), copying(progress, 0.9, 1.0);
+  Run(filter, filtering, "distance map");
   const float* out = filter->GetOutput()->GetBufferPointer();
-  distance.resize(grid.Count());
-  for (std::size_t v = 0; v < grid.Count(); ++v) distance[v] = mask[v] ? std::max(out[v], 0.0f) : 0.0f;
+  distance.clear();
+  distance.reserve(grid.Count());  // filled piece by piece: its pages are first touched between reports
+  ForPieces(grid.Count(), kPollPiece, &copying, [&](std::size_t b, std::size_t e) {
+    for (std::size_t v = b; v < e; ++v) distance.push_back(mask[v] ? std::max(out[v], 0.0f) : 0.0f);
+  });
 }
 
 }  // namespace colonmap::segmentation::detail

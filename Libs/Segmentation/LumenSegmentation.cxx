@@ -1,6 +1,7 @@
 #include "Segmentation/LumenSegmentation.h"
 
 #include "Segmentation/ItkSegmentationFilters.h"
+#include "Segmentation/LabelComponents.h"
 
 #include <Eigen/LU>
 

@@ -2,7 +2,7 @@
 // Colon lumen segmentation of a CT colonography scan (DESIGN 2.1, issue 4).
 //
 //   1. Air: voxels with HU below the threshold (cleansed fluid is air already).
-//   2. 26-connected components of the air (ITK). Components touching a side face of the image
+//   2. 26-connected components of the air (LabelComponents.h). Components touching a side face of the image
 //      (the faces of the two index axes that run across the body, whatever the file's axis
 //      order) are the air around the body and are dropped; so are components touching the
 //      superior face (the lung bases at the top of an abdominal scan; the colon lies below the

@@ -3,6 +3,7 @@
 #include "Core/Error.h"
 #include "Segmentation/EulerCharacteristic.h"
 #include "Segmentation/ItkSegmentationFilters.h"
+#include "Segmentation/LabelComponents.h"
 #include "Segmentation/TopologyPreservingGrowth.h"
 #include "Segmentation/WellComposed.h"
 
@@ -29,18 +30,22 @@ LumenTopology MakeLumenBall(Volume<unsigned char>& crop, ProgressSink& progress)
     ProgressSink& p = round == 0 ? progress : held;
     // 1. The largest component.
     {
-      SubProgress step(p, 0.05, 0.2);
+      SubProgress step(p, 0.05, 0.15), countStep(p, 0.15, 0.175), dropStep(p, 0.175, 0.2);
       std::vector<std::uint32_t> labels;
-      const std::uint32_t n = detail::LabelComponents26(grid, crop.voxels.data(), labels, step);
+      const std::uint32_t n = detail::LabelComponents26(grid, crop.voxels.data(), labels, step, /*labelsOfOne=*/false);
       if (round == 0) out.components = static_cast<int>(n);
       if (n > 1) {
         std::vector<std::size_t> count(n + 1, 0);
-        for (std::uint32_t l : labels) ++count[l];
+        ForPieces(labels.size(), kPollPiece, &countStep, [&](std::size_t b, std::size_t e) {
+          for (std::size_t v = b; v < e; ++v) ++count[labels[v]];
+        });
         std::uint32_t keep = 1;
         for (std::uint32_t l = 2; l <= n; ++l)
           if (count[l] > count[keep]) keep = l;  // ties: the first in raster order
-        for (std::size_t v = 0; v < labels.size(); ++v)
-          if (labels[v] && labels[v] != keep) crop.voxels[v] = 0, ++out.droppedVoxels;
+        ForPieces(labels.size(), kPollPiece, &dropStep, [&](std::size_t b, std::size_t e) {
+          for (std::size_t v = b; v < e; ++v)
+            if (labels[v] && labels[v] != keep) crop.voxels[v] = 0, ++out.droppedVoxels;
+        });
         for (std::uint32_t l = 1; l <= n; ++l)
           if (l != keep) out.dropped.push_back(count[l]);
         if (round > 0) out.components += static_cast<int>(n) - 1;
@@ -55,7 +60,8 @@ LumenTopology MakeLumenBall(Volume<unsigned char>& crop, ProgressSink& progress)
       out.cavityVoxelsFilled += static_cast<std::size_t>(std::count(crop.voxels.begin(), crop.voxels.end(), 1)) - before;
     }
     // 3. Handles.
-    const long handles = 1 - static_cast<long>(EulerCharacteristic(crop));
+    SubProgress eulerStep(p, 0.35, 0.4);
+    const long handles = 1 - static_cast<long>(EulerCharacteristic(crop, &eulerStep));
     out.handles += round == 0 ? handles : std::max(0L, handles);
     p.Report(0.4);
     if (handles > 0) {
@@ -78,7 +84,8 @@ LumenTopology MakeLumenBall(Volume<unsigned char>& crop, ProgressSink& progress)
     // surface is rough at the voxel scale), a voxel goes anyway and steps 1-3 run again on the
     // result, until nothing had to be forced.
     long forced = 0;
-    out.wellComposedVoxels += MakeWellComposedForcing(crop, &forced);
+    SubProgress wellComposedStep(p, 0.9, 0.95);
+    out.wellComposedVoxels += MakeWellComposedForcing(crop, &forced, &wellComposedStep);
     p.Report(0.95);
     out.rounds = round + 1;
     if (forced == 0) break;

@@ -1,5 +1,6 @@
 #include "Segmentation/WellComposed.h"
 
+#include "Core/Cancel.h"
 #include "Core/Error.h"
 #include "Segmentation/SimplePoint.h"
 
@@ -72,20 +73,20 @@ long CriticalCubes(const Volume<unsigned char>& mask) {
 }
 
 namespace {
-long Repair(Volume<unsigned char>& mask, long* forced);
+long Repair(Volume<unsigned char>& mask, long* forced, ProgressSink* progress);
 }  // namespace
 
-long MakeWellComposed(Volume<unsigned char>& mask) { return Repair(mask, nullptr); }
+long MakeWellComposed(Volume<unsigned char>& mask, ProgressSink* progress) { return Repair(mask, nullptr, progress); }
 
-long MakeWellComposedForcing(Volume<unsigned char>& mask, long* forced) {
+long MakeWellComposedForcing(Volume<unsigned char>& mask, long* forced, ProgressSink* progress) {
   long f = 0;
-  const long changed = Repair(mask, &f);
+  const long changed = Repair(mask, &f, progress);
   if (forced) *forced = f;
   return changed;
 }
 
 namespace {
-long Repair(Volume<unsigned char>& mask, long* forced) {
+long Repair(Volume<unsigned char>& mask, long* forced, ProgressSink* progress) {
   const long nx = static_cast<long>(mask.size[0]), ny = static_cast<long>(mask.size[1]), nz = static_cast<long>(mask.size[2]);
   const Grid g{nx, ny, nz, mask.voxels.data()};
   // Each voxel changes at most `limit` times, so the repair cannot cycle: first once (added
@@ -115,10 +116,17 @@ long Repair(Volume<unsigned char>& mask, long* forced) {
   // One pass over the cubes: each critical cube gets one voxel changed to `want` (1: add an
   // unset voxel, 0: remove a set one) if one of them is a simple point. Returns the changes and
   // counts the critical cubes that had no such voxel.
+  // The number of passes is not known ahead: each pass reports as if it did half of what is left.
+  double reported = 0.0;
+  const auto poll = [&](long k, long slices) {
+    if (progress && k % 8 == 0) progress->Report(reported + 0.5 * (1.0 - reported) * double(k) / double(slices));
+  };
+  const auto passDone = [&] { reported += 0.5 * (1.0 - reported); };
   const auto pass = [&](int want, long& stuck) {
     long fixed = 0;
     stuck = 0;
-    for (long k = 1; k + 2 < nz; ++k)
+    for (long k = 1; k + 2 < nz; ++k) {
+      poll(k, nz);
       for (long j = 1; j + 2 < ny; ++j) {
         if (!occupied(j, k)) continue;
         for (long i = 1; i + 2 < nx; ++i) {
@@ -138,6 +146,8 @@ long Repair(Volume<unsigned char>& mask, long* forced) {
           else ++stuck;
         }
       }
+    }
+    passDone();
     return fixed;
   };
   // Additions until none helps, then for the cubes no addition can fix one pass of removals,
@@ -166,7 +176,8 @@ long Repair(Volume<unsigned char>& mask, long* forced) {
     // What is left loses set voxels, topology or not (removals only: this ends).
     for (long removed = 1; removed > 0;) {
       removed = 0;
-      for (long k = 0; k + 1 < nz; ++k)
+      for (long k = 0; k + 1 < nz; ++k) {
+        poll(k, nz);
         for (long j = 0; j + 1 < ny; ++j) {
           if (!occupied(j, k)) continue;
           for (long i = 0; i + 1 < nx; ++i) {
@@ -180,11 +191,14 @@ long Repair(Volume<unsigned char>& mask, long* forced) {
               }
           }
         }
+      }
+      passDone();
       *forced += removed;
       changed += removed;
     }
     return changed;
   }
+  if (progress) progress->Report(1.0);
   const long left = CriticalCubes(mask);
   if (left) throw Error("voxel mask: " + std::to_string(left) + " voxel configurations cannot be made well-composed");
   return changed;

@@ -11,9 +11,11 @@
 #include <vtkCallbackCommand.h>
 #include <vtkCommand.h>
 #include <vtkFlyingEdges3D.h>
+#include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkImageGaussianSmooth.h>
 #include <vtkNew.h>
+#include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
 #include <vtkWindowedSincPolyDataFilter.h>
@@ -63,6 +65,10 @@ void RunFilter(vtkAlgorithm* filter, ProgressSink& progress, double from, double
   progress.Report(to);
 }
 
+// vtkImageGaussianSmooth in slabs along k, so that the host can cancel between them (the
+// filter's own progress comes from its first thread's piece only, and that ends at once). Each
+// output voxel is the same sum as in one pass: the filter convolves along k first, reading the
+// input's whole extent.
 void GaussianSmooth(Volume<float>& volume, double sigmaVoxels, ProgressSink& progress, double from, double to) {
   vtkNew<vtkImageData> image;
   ToImageData(volume, image);
@@ -71,8 +77,22 @@ void GaussianSmooth(Volume<float>& volume, double sigmaVoxels, ProgressSink& pro
   smooth->SetDimensionality(3);
   smooth->SetStandardDeviations(sigmaVoxels, sigmaVoxels, sigmaVoxels);  // in voxels
   smooth->SetRadiusFactors(3.0, 3.0, 3.0);
-  RunFilter(smooth, progress, from, to);
-  FromImageData(smooth->GetOutput(), volume);
+  const int nx = int(volume.size[0]), ny = int(volume.size[1]), nz = int(volume.size[2]);
+  const std::size_t sliceVoxels = volume.size[0] * volume.size[1];
+  const int slab = std::max(1, int(kPollPiece / std::max<std::size_t>(1, sliceVoxels)));
+  std::vector<float> smoothed(volume.voxels.size());
+  for (int k0 = 0; k0 < nz; k0 += slab) {
+    const int k1 = std::min(nz, k0 + slab) - 1;
+    progress.Report(from + (to - from) * double(k0) / double(nz));
+    const int extent[6] = {0, nx - 1, 0, ny - 1, k0, k1};
+    smooth->UpdateExtent(extent);
+    auto* scalars = vtkFloatArray::SafeDownCast(smooth->GetOutput()->GetPointData()->GetScalars());
+    if (!scalars || scalars->GetNumberOfValues() != vtkIdType(sliceVoxels) * (k1 - k0 + 1))
+      throw Error("surface: the Gaussian smoothing gave no field");
+    std::copy(scalars->GetPointer(0), scalars->GetPointer(0) + scalars->GetNumberOfValues(), smoothed.begin() + std::ptrdiff_t(sliceVoxels) * k0);
+  }
+  volume.voxels.swap(smoothed);
+  progress.Report(to);
 }
 
 bool SameGrid(const Volume<float>& a, const Volume<short>& b) {
@@ -89,18 +109,27 @@ std::string Str(double v) {
 }
 
 // The lumen box of the mask (voxels equal to the label value), grown by `margin` voxels.
-Volume<float> CropAround(const Volume<float>& label, float value, long margin, std::array<long, 3>& first, long& count) {
+Volume<float> CropAround(const Volume<float>& label, float value, long margin, std::array<long, 3>& first, long& count,
+                         ProgressSink& progress) {
+  const long n0 = long(label.size[0]), n1 = long(label.size[1]), n2 = long(label.size[2]);
+  const auto isLumen = [value](float f) { return std::fabs(f - value) < 0.5f; };
   std::array<long, 3> lo{{std::numeric_limits<long>::max(), std::numeric_limits<long>::max(), std::numeric_limits<long>::max()}};
   std::array<long, 3> hi{{-1, -1, -1}};
   count = 0;
-  for (std::size_t k = 0; k < label.size[2]; ++k)
-    for (std::size_t j = 0; j < label.size[1]; ++j)
-      for (std::size_t i = 0; i < label.size[0]; ++i) {
-        if (std::fabs(label.At(i, j, k) - value) >= 0.5f) continue;
+  SubProgress boxStep(progress, 0.0, 0.5), copyStep(progress, 0.5, 1.0);
+  for (long k = 0; k < n2; ++k) {
+    if (k % 8 == 0) boxStep.Report(double(k) / double(n2));
+    for (long j = 0; j < n1; ++j) {
+      const float* row = &label.voxels[label.Offset(0, std::size_t(j), std::size_t(k))];
+      for (long i = 0; i < n0; ++i) {
+        if (!isLumen(row[i])) continue;
         ++count;
-        const long at[3] = {long(i), long(j), long(k)};
-        for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], at[d]), hi[d] = std::max(hi[d], at[d]);
+        lo[0] = std::min(lo[0], i), hi[0] = std::max(hi[0], i);
+        lo[1] = std::min(lo[1], j), hi[1] = std::max(hi[1], j);
+        lo[2] = std::min(lo[2], k), hi[2] = std::max(hi[2], k);
       }
+    }
+  }
   Volume<float> crop;
   if (count == 0) return crop;
   for (int d = 0; d < 3; ++d) {
@@ -111,13 +140,15 @@ Volume<float> CropAround(const Volume<float>& label, float value, long margin, s
   crop.direction = label.direction;
   crop.origin = label.IndexToPhysical(Eigen::Vector3d(double(first[0]), double(first[1]), double(first[2])));
   crop.Allocate(0.0f);
-  for (std::size_t k = 0; k < crop.size[2]; ++k)
-    for (std::size_t j = 0; j < crop.size[1]; ++j)
-      for (std::size_t i = 0; i < crop.size[0]; ++i) {
-        const long x = first[0] + long(i), y = first[1] + long(j), z = first[2] + long(k);
-        if (x < 0 || y < 0 || z < 0 || x >= long(label.size[0]) || y >= long(label.size[1]) || z >= long(label.size[2])) continue;
-        crop.At(i, j, k) = std::fabs(label.At(std::size_t(x), std::size_t(y), std::size_t(z)) - value) < 0.5f ? 1.0f : 0.0f;
-      }
+  // Only the lumen's box holds lumen voxels; the margin around it stays 0.
+  for (long k = lo[2]; k <= hi[2]; ++k) {
+    if (k % 8 == 0) copyStep.Report(double(k - lo[2]) / double(hi[2] - lo[2] + 1));
+    for (long j = lo[1]; j <= hi[1]; ++j) {
+      const float* in = &label.voxels[label.Offset(0, std::size_t(j), std::size_t(k))];
+      float* out = &crop.voxels[crop.Offset(std::size_t(lo[0] - first[0]), std::size_t(j - first[1]), std::size_t(k - first[2]))];
+      for (long i = lo[0]; i <= hi[0]; ++i) out[i - lo[0]] = isLumen(in[i]) ? 1.0f : 0.0f;
+    }
+  }
   return crop;
 }
 
@@ -151,15 +182,20 @@ SurfaceResult ReconstructSurface(const Volume<float>& label, const Volume<short>
   const double sigma = ct ? options.bandVoxels / 2.326 : options.labelSigmaVoxels;  // Phi(-2.326) = 0.01
   const long margin = static_cast<long>(std::ceil(3.0 * sigma + options.bandVoxels)) + 3;
   std::array<long, 3> first{};
-  Volume<float> field = CropAround(label, static_cast<float>(options.labelValue), margin, first, result.lumenVoxels);
+  SubProgress cropStep(progress, 0.0, 0.02);
+  Volume<float> field = CropAround(label, static_cast<float>(options.labelValue), margin, first, result.lumenVoxels, cropStep);
   if (result.lumenVoxels == 0) throw Error("label map: no voxel has the label value " + Str(options.labelValue));
   Volume<unsigned char> ball = field.Like<unsigned char>(0);
-  for (std::size_t v = 0; v < ball.voxels.size(); ++v) ball.voxels[v] = field.voxels[v] > 0.5f ? 1 : 0;
   {
-    const std::vector<unsigned char> before = ball.voxels;
-    SubProgress step(progress, 0.0, 0.25);
+    std::vector<unsigned char> before(ball.voxels.size());
+    SubProgress toBall(progress, 0.02, 0.03), step(progress, 0.03, 0.24), compare(progress, 0.24, 0.245);
+    ForPieces(ball.voxels.size(), kPollPiece, &toBall, [&](std::size_t b, std::size_t e) {
+      for (std::size_t v = b; v < e; ++v) before[v] = ball.voxels[v] = field.voxels[v] > 0.5f ? 1 : 0;
+    });
     result.changes = segmentation::MakeLumenBall(ball, step);
-    for (std::size_t v = 0; v < ball.voxels.size(); ++v) result.voxelsChanged += ball.voxels[v] != before[v];
+    ForPieces(ball.voxels.size(), kPollPiece, &compare, [&](std::size_t b, std::size_t e) {
+      for (std::size_t v = b; v < e; ++v) result.voxelsChanged += ball.voxels[v] != before[v];
+    });
   }
   for (std::size_t n : result.changes.dropped) result.droppedComponents.push_back(static_cast<long>(n));
   const segmentation::LumenTopology& t = result.changes;
@@ -177,25 +213,38 @@ SurfaceResult ReconstructSurface(const Volume<float>& label, const Volume<short>
 
   // 2. The field: the ball blurred (label only), or the CT in a band around the ball's boundary
   // (air deeper inside, wall farther out).
-  for (std::size_t v = 0; v < ball.voxels.size(); ++v) field.voxels[v] = ball.voxels[v];
-  GaussianSmooth(field, sigma, progress, 0.25, 0.32);
+  {
+    SubProgress step(progress, 0.245, 0.25);
+    ForPieces(ball.voxels.size(), kPollPiece, &step, [&](std::size_t b, std::size_t e) {
+      for (std::size_t v = b; v < e; ++v) field.voxels[v] = ball.voxels[v];
+    });
+  }
+  GaussianSmooth(field, sigma, progress, 0.25, 0.31);
   const float iso = ct ? static_cast<float>(options.isoValueHU) : 0.5f;
   if (ct) {
     const float air = static_cast<float>(options.airHU), wall = static_cast<float>(options.wallHU);
-    for (std::size_t k = 0; k < field.size[2]; ++k)
-      for (std::size_t j = 0; j < field.size[1]; ++j)
-        for (std::size_t i = 0; i < field.size[0]; ++i) {
-          float& f = field.At(i, j, k);
+    const long nx = long(field.size[0]), ny = long(field.size[1]), nz = long(field.size[2]);
+    for (long k = 0; k < nz; ++k) {
+      if (k % 4 == 0) progress.Report(0.31 + 0.01 * double(k) / double(nz));
+      const long z = first[2] + k;
+      const bool zIn = z >= 0 && z < long(ct->size[2]);
+      for (long j = 0; j < ny; ++j) {
+        float* row = &field.voxels[field.Offset(0, std::size_t(j), std::size_t(k))];
+        const long y = first[1] + j;
+        const short* ctRow = zIn && y >= 0 && y < long(ct->size[1]) ? &ct->voxels[ct->Offset(0, std::size_t(y), std::size_t(z))] : nullptr;
+        for (long i = 0; i < nx; ++i) {
+          float& f = row[i];
           if (f >= 0.99f) {
             f = air;
           } else if (f <= 0.01f) {
             f = wall;
           } else {
-            const long x = first[0] + long(i), y = first[1] + long(j), z = first[2] + long(k);
-            const bool in = x >= 0 && y >= 0 && z >= 0 && x < long(ct->size[0]) && y < long(ct->size[1]) && z < long(ct->size[2]);
-            f = in ? std::clamp(static_cast<float>(ct->At(std::size_t(x), std::size_t(y), std::size_t(z))), air, wall) : wall;
+            const long x = first[0] + i;
+            f = ctRow && x >= 0 && x < long(ct->size[0]) ? std::clamp(static_cast<float>(ctRow[x]), air, wall) : wall;
           }
         }
+      }
+    }
   }
   const auto inside = [&](float f) { return ct ? f < iso : f > iso; };
   timer.Lap("field");
@@ -244,12 +293,15 @@ SurfaceResult ReconstructSurface(const Volume<float>& label, const Volume<short>
   // centres, the ball decides which side they are on), and the contour: on a well-composed sign
   // pattern a closed manifold with the ball's topology.
   if (raw.F.rows() == 0) {
-    for (std::size_t v = 0; v < ball.voxels.size(); ++v) {
-      float& f = field.voxels[v];
-      if (ball.voxels[v] && !inside(f)) f = ct ? iso - 1.0f : iso + 0.001f;
-      if (!ball.voxels[v] && inside(f)) f = ct ? iso + 1.0f : iso - 0.001f;
-    }
-    raw = contourOf(0.42, 0.5);
+    SubProgress step(progress, 0.42, 0.43);
+    ForPieces(ball.voxels.size(), kPollPiece, &step, [&](std::size_t b, std::size_t e) {
+      for (std::size_t v = b; v < e; ++v) {
+        float& f = field.voxels[v];
+        if (ball.voxels[v] && !inside(f)) f = ct ? iso - 1.0f : iso + 0.001f;
+        if (!ball.voxels[v] && inside(f)) f = ct ? iso + 1.0f : iso - 0.001f;
+      }
+    });
+    raw = contourOf(0.43, 0.5);
     timer.Lap("contour with the ball's signs");
   }
   ball = Volume<unsigned char>();

@@ -1,5 +1,7 @@
 #include "Surface/VtkConversion.h"
 
+#include "Core/Cancel.h"
+
 #include <vtkCellArray.h>
 #include <vtkFloatArray.h>
 #include <vtkIdList.h>
@@ -21,17 +23,16 @@ void ToImageData(const Volume<float>& volume, vtkImageData* image) {
   image->SetOrigin(0.0, 0.0, 0.0);
   vtkNew<vtkFloatArray> scalars;
   scalars->SetNumberOfComponents(1);
-  scalars->SetNumberOfTuples(static_cast<vtkIdType>(volume.voxels.size()));
-  std::copy(volume.voxels.begin(), volume.voxels.end(), scalars->GetPointer(0));
+  // save = 1: VTK reads the caller's voxels and never frees them (no copy of a CT-sized array).
+  scalars->SetArray(const_cast<float*>(volume.voxels.data()), static_cast<vtkIdType>(volume.voxels.size()), 1);
   scalars->SetName("Scalars");
   image->GetPointData()->SetScalars(scalars);
 }
 
-void FromImageData(vtkImageData* image, Volume<float>& volume) {
+void FromImageData(vtkImageData* image, Volume<float>& volume, ProgressSink* progress) {
   auto* scalars = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars());
   volume.voxels.resize(volume.NumberOfVoxels());
-  const float* p = scalars->GetPointer(0);
-  std::copy(p, p + volume.voxels.size(), volume.voxels.begin());
+  CopyReporting(scalars->GetPointer(0), volume.voxels.size(), volume.voxels.data(), progress);
 }
 
 void ToPolyData(const TriangleMesh& mesh, vtkPolyData* polyData) {

@@ -7,6 +7,7 @@
 // spacing (origin 0, identity direction), because not every VTK 9.1 filter honours an image
 // direction matrix. GridToPhysical maps grid-frame points to LPS with the volume's origin and
 // direction (a rigid motion, possibly a reflection: callers fix orientation afterwards).
+#include "Core/Cancel.h"
 #include "Core/TriangleMesh.h"
 #include "Core/Volume.h"
 
@@ -15,10 +16,12 @@ class vtkPolyData;
 
 namespace colonmap::surface {
 
-// Copies the voxels of `volume` into `image` (float scalars), grid frame.
+// `image` (float scalars, grid frame) made to refer to the voxels of `volume`, without a copy:
+// keep `volume` alive, and its voxels unmoved, while VTK filters read `image`.
 void ToImageData(const Volume<float>& volume, vtkImageData* image);
-// Copies float scalars of `image` (same dimensions) back into volume.voxels.
-void FromImageData(vtkImageData* image, Volume<float>& volume);
+// Copies float scalars of `image` (same dimensions) back into volume.voxels, polling
+// `progress` (when given) as it goes.
+void FromImageData(vtkImageData* image, Volume<float>& volume, ProgressSink* progress = nullptr);
 
 // p = origin + direction * q for each row q of V (grid frame -> LPS mm).
 template <typename T>

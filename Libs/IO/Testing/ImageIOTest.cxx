@@ -296,8 +296,8 @@ TEST(ImageIO, ShelfHandsOnExpectedVolumesAndFallsBackToTheFile) {
 
   VolumeShelf shelf;
   shelf.Expect(kept, 2);
-  shelf.Put(kept, inMemory);
-  shelf.Put(notKept, other);  // not expected: not kept
+  shelf.Put(kept, Volume<unsigned char>(inMemory));
+  shelf.Put(notKept, Volume<unsigned char>(other));  // not expected: not kept
   const Volume<float> first = io::ReadImageKept<float>(&shelf, kept, "label");
   EXPECT_EQ(first.voxels[0], 7.0f);  // from the shelf, as float
   EXPECT_EQ(first.voxels[4], 1.0f);
@@ -307,5 +307,18 @@ TEST(ImageIO, ShelfHandsOnExpectedVolumesAndFallsBackToTheFile) {
   EXPECT_EQ(io::ReadImageKept<unsigned char>(&shelf, kept, "label").voxels, label.voxels);  // now the file
   EXPECT_EQ(io::ReadImageKept<unsigned char>(&shelf, notKept, "label").voxels, other.voxels);
   EXPECT_EQ(io::ReadImageKept<unsigned char>(nullptr, kept, "label").voxels, label.voxels);
+
+  // A conversion taken from the shelf polls the host between its pieces: a cancelled host stops it.
+  struct Cancelling : ProgressSink {
+    int reports = 0;
+    void Report(double) override {
+      ++reports;
+      throw Cancelled();
+    }
+  } cancelling;
+  shelf.Expect(kept, 1);
+  shelf.Put(kept, Volume<unsigned char>(inMemory));
+  EXPECT_THROW(io::ReadImageKept<float>(&shelf, kept, "label", {}, &cancelling), Cancelled);
+  EXPECT_EQ(cancelling.reports, 1);
   fs::remove_all(dir);
 }

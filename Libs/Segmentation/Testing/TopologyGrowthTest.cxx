@@ -4,6 +4,8 @@
 #include "SegmentationTestUtils.h"
 #include "Segmentation/EulerCharacteristic.h"
 #include "Segmentation/ItkSegmentationFilters.h"
+#include "Segmentation/LabelComponents.h"
+#include "Phantom/Random.h"
 #include "Segmentation/TopologyPreservingGrowth.h"
 #include "Core/Error.h"
 
@@ -106,6 +108,36 @@ TEST(TopologyGrowth, CavityFillingUsesFaceConnectedBackground) {
   detail::FillCavities6(GridOf(filled), filled.voxels, none);
   EXPECT_EQ(CountSet(filled), 7u * 7u * 7u - 1u);  // all but the face-open corner voxel
   EXPECT_EQ(filled.At(7, 7, 4), 0);
+}
+
+TEST(TopologyGrowth, OurComponentLabelsAreItksOnNoiseAndShapes) {
+  // Random masks of several densities (many components, diagonal contacts, runs at the grid's
+  // faces) on odd grid sizes: the same number of components and the same label at every voxel as
+  // itk::ConnectedComponentImageFilter, the reference.
+  NullProgress none;
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    const double density = 0.02 + 0.015 * double(seed);  // below and near 26-percolation (about 0.1)
+    Volume<unsigned char> m = Shape(23 + seed, 17 + 2 * seed, 11 + seed, [&](double i, double j, double k) {
+      return phantom::HashToUnit(phantom::Hash(seed, std::uint64_t(i + 100 * j + 10000 * k))) < density;
+    });
+    std::vector<std::uint32_t> ours, itk;
+    const std::uint32_t n = detail::LabelComponents26(GridOf(m), m.voxels.data(), ours, none);
+    EXPECT_EQ(n, detail::ItkLabelComponents26(GridOf(m), m.voxels.data(), itk, none)) << "seed " << seed;
+    EXPECT_EQ(ours, itk) << "seed " << seed;
+    EXPECT_GT(n, 1u) << "seed " << seed;
+  }
+  // One component: its labels only when asked for.
+  const Volume<unsigned char> block = Shape(8, 8, 8, [](double i, double j, double k) { return i > 1 && j > 2 && k > 3; });
+  std::vector<std::uint32_t> labels{7};
+  EXPECT_EQ(detail::LabelComponents26(GridOf(block), block.voxels.data(), labels, none, /*labelsOfOne=*/false), 1u);
+  EXPECT_TRUE(labels.empty());
+  EXPECT_EQ(detail::LabelComponents26(GridOf(block), block.voxels.data(), labels, none), 1u);
+  EXPECT_EQ(labels.size(), block.voxels.size());
+  // A host that cancels stops it at its first poll.
+  struct Cancelling : ProgressSink {
+    void Report(double) override { throw Cancelled(); }
+  } cancelling;
+  EXPECT_THROW(detail::LabelComponents26(GridOf(block), block.voxels.data(), labels, cancelling), Cancelled);
 }
 
 TEST(TopologyGrowth, ItkFiltersOnKnownShapes) {

@@ -6,7 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace colonmap::segmentation {
 namespace {
@@ -60,6 +62,40 @@ TEST(WellComposed, RoughTopologicalBallsBecomeWellComposedBalls) {
     EXPECT_EQ(CriticalCubes(ball), 0) << "seed " << seed;
     EXPECT_EQ(EulerCharacteristic(ball), 1) << "seed " << seed;
   }
+}
+
+TEST(WellComposed, RepairAndEulerCountPollTheHostAndGiveTheSameAnswer) {
+  // Rough noise, as above: many passes. With a sink the answer is the same, the fractions rise
+  // to 1, and a host that cancels stops both.
+  Volume<unsigned char> plain = Empty(40);
+  for (std::size_t k = 2; k < 38; ++k)
+    for (std::size_t j = 2; j < 38; ++j)
+      for (std::size_t i = 2; i < 38; ++i)
+        plain.At(i, j, k) = phantom::HashToUnit(phantom::Hash(11, plain.Offset(i, j, k))) < 0.55 ? 1 : 0;
+  Volume<unsigned char> polled = plain;
+  struct Recording : ProgressSink {
+    std::vector<double> fractions;
+    bool cancel = false;
+    void Report(double f) override {
+      fractions.push_back(f);
+      if (cancel) throw Cancelled();
+    }
+  } sink;
+  EXPECT_EQ(EulerCharacteristic(polled, &sink), EulerCharacteristic(plain));
+  ASSERT_GE(sink.fractions.size(), 5u);
+  EXPECT_EQ(sink.fractions.back(), 1.0);
+  sink.fractions.clear();
+  long forcedPlain = 0, forcedPolled = 0;
+  const long changed = MakeWellComposedForcing(plain, &forcedPlain);
+  EXPECT_EQ(MakeWellComposedForcing(polled, &forcedPolled, &sink), changed);
+  EXPECT_EQ(polled.voxels, plain.voxels);
+  EXPECT_EQ(forcedPolled, forcedPlain);
+  ASSERT_GE(sink.fractions.size(), 5u);
+  EXPECT_TRUE(std::is_sorted(sink.fractions.begin(), sink.fractions.end()));
+  EXPECT_EQ(sink.fractions.back(), 1.0);
+  sink.cancel = true;
+  EXPECT_THROW(EulerCharacteristic(polled, &sink), Cancelled);
+  EXPECT_THROW(MakeWellComposedForcing(polled, &forcedPolled, &sink), Cancelled);
 }
 
 }  // namespace

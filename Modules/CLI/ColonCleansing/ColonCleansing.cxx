@@ -28,13 +28,13 @@ void Run(cli::ModuleContext& ctx) {
   ctx.progress.EndStage();
 
   ctx.progress.StartStage("Cleansing", "tagged material to air");
-  const cleansing::CleansingResult r = cleansing::Cleanse(ct, p, ctx.progress);
+  cleansing::CleansingResult r = cleansing::Cleanse(ct, p, ctx.progress);
   ctx.progress.EndStage();
 
   ctx.progress.StartStage("Writing", "writing the cleansed CT");
   // Uncompressed: CT noise makes gzip slow for little gain (see docs/performance.md).
   io::WriteImage(r.cleansed, outputTemp, "cleansed CT", io::Compression::None);
-  if (ctx.shelf) ctx.shelf->Put(ctx.args.GetString("outputCT"), r.cleansed);  // for the next stages
+  if (ctx.shelf) ctx.shelf->Put(ctx.args.GetString("outputCT"), std::move(r.cleansed));  // for the next stages
   ctx.progress.Report(0.8);  // also a poll of Cancel between the two files
   if (wantLabel) io::WriteImage(r.tagged, labelTemp, "tagged label");
   ctx.progress.EndStage();

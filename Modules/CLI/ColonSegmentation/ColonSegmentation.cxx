@@ -34,7 +34,7 @@ void Run(cli::ModuleContext& ctx) {
   ctx.progress.Plan({{"Reading", 2}, {"Segmentation", 10}, {"Writing", 1}});
 
   ctx.progress.StartStage("Reading", "reading the CT");
-  const Volume<short> ct = io::ReadImageKept<short>(ctx.shelf, input, "input CT", ctx.ReaderNotes());
+  const Volume<short> ct = io::ReadImageKept<short>(ctx.shelf, input, "input CT", ctx.ReaderNotes(), &ctx.progress);
   ctx.progress.EndStage();
 
   ctx.progress.StartStage("Segmentation", "air components, colon selection, topology-preserving growth");
@@ -48,13 +48,13 @@ void Run(cli::ModuleContext& ctx) {
 
   ctx.progress.StartStage("Writing", "writing the label map");
   io::WriteImage(s.label, staged, "output label map");
-  if (ctx.shelf) ctx.shelf->Put(output, s.label);  // for the next stage
   ctx.progress.Report(0.5);  // also a poll of Cancel between the two files
   if (!stagedBridge.empty()) {
-    const Volume<unsigned char> bridge = s.bridgeLabel.voxels.empty() ? s.label.Like<unsigned char>(0) : s.bridgeLabel;
+    Volume<unsigned char> bridge = s.bridgeLabel.voxels.empty() ? s.label.Like<unsigned char>(0) : std::move(s.bridgeLabel);
     io::WriteImage(bridge, stagedBridge, "virtual lumen label map");
-    if (ctx.shelf) ctx.shelf->Put(bridgeOutput, bridge);
+    if (ctx.shelf) ctx.shelf->Put(bridgeOutput, std::move(bridge));
   }
+  if (ctx.shelf) ctx.shelf->Put(output, std::move(s.label));  // for the next stage (not used below)
   ctx.progress.EndStage();
 
   // Report: the kept component, then every dropped one of 1 ml or more (the rest counted).

@@ -29,15 +29,18 @@ void Run(cli::ModuleContext& ctx) {
 
   ctx.progress.StartStage("Reading", "label map and reference CT");
   // Any integer label type is read as float (exact for labels up to 2^24).
-  const Volume<float> label = io::ReadImageKept<float>(ctx.shelf, labelPath, "input label map", ctx.ReaderNotes());
-  // A report after each file: each is a poll of Cancel too (ColonSupineProne's promise: 0.5 s).
+  // A report after each file, and between the pieces of a volume taken from the shelf: each is a
+  // poll of Cancel too (ColonSupineProne's promise: 0.5 s).
+  SubProgress labelStep(ctx.progress, 0.0, 0.4), ctStep(ctx.progress, 0.4, 0.8), virtualStep(ctx.progress, 0.8, 1.0);
+  const Volume<float> label = io::ReadImageKept<float>(ctx.shelf, labelPath, "input label map", ctx.ReaderNotes(), &labelStep);
   ctx.progress.Report(0.4);
   std::optional<Volume<short>> ct;
-  if (!ctPath.empty()) ct = io::ReadImageKept<short>(ctx.shelf, ctPath, "reference CT", ctx.ReaderNotes());
+  if (!ctPath.empty()) ct = io::ReadImageKept<short>(ctx.shelf, ctPath, "reference CT", ctx.ReaderNotes(), &ctStep);
   ctx.progress.Report(0.8);
   std::optional<Volume<unsigned char>> virtualLumen;
   if (!virtualPath.empty()) {
-    virtualLumen = io::ReadImageKept<unsigned char>(ctx.shelf, virtualPath, "virtual lumen label map", ctx.ReaderNotes());
+    virtualLumen = io::ReadImageKept<unsigned char>(ctx.shelf, virtualPath, "virtual lumen label map", ctx.ReaderNotes(),
+                                                    &virtualStep);
     if (virtualLumen->size != label.size || (virtualLumen->origin - label.origin).norm() > 1e-3 ||
         (virtualLumen->spacing - label.spacing).norm() > 1e-6)
       throw InputError("virtual lumen label map", virtualPath, "not on the grid of the input label map");
