@@ -12,6 +12,7 @@
 // use from several threads (the two scans' jobs share one shelf).
 #include "Core/Volume.h"
 
+#include <atomic>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -49,34 +50,24 @@ class VolumeShelf {
   // lock, in pieces with `progress` (when given) polled between them.
   template <typename T>
   std::optional<Volume<T>> Take(const std::string& path, ProgressSink* progress = nullptr) {
-    std::shared_ptr<Kept> kept;
-    {
-      const std::lock_guard<std::mutex> lock(mutex_);
-      const auto it = entries_.find(path);
-      if (it == entries_.end() || it->second.reads <= 0 || !it->second.volume) return std::nullopt;
-      kept = it->second.volume;
-      if (--it->second.reads == 0) entries_.erase(it);  // the last read: this call holds the only reference
+    const std::shared_ptr<Kept> kept = TakeShared(path);
+    if (!kept) return std::nullopt;
+    if (auto* same = std::get_if<Volume<T>>(kept.get()); same && kept.use_count() == 1) {
+      // The last read, and no other Take still copies it: move it out. The fence orders that
+      // copier's reads (its reference's release) before our writes.
+      std::atomic_thread_fence(std::memory_order_acquire);
+      return std::move(*same);
     }
-    const bool last = kept.use_count() == 1;
-    std::optional<Volume<T>> out;
-    std::visit(
-        [&](auto& volume) {
-          using K = std::decay_t<decltype(volume)>;
-          if constexpr (std::is_same_v<K, Volume<T>>) {
-            if (last) {
-              out = std::move(volume);
-              return;
-            }
-          }
-          Volume<T> v = volume.template EmptyLike<T>();
-          v.voxels.reserve(volume.voxels.size());
-          ForPieces(volume.voxels.size(), kPollPiece, progress, [&](std::size_t b, std::size_t e) {
-            for (std::size_t i = b; i < e; ++i) v.voxels.push_back(static_cast<T>(volume.voxels[i]));
-          });
-          out = std::move(v);
-        },
-        *kept);
-    return out;
+    return std::visit([&](const auto& volume) { return Mapped<T>(volume, [](auto v) { return static_cast<T>(v); }, progress); },
+                      *kept);
+  }
+
+  // The same with each voxel mapped by `map` (e.g. a label map to a 0/1 mask of one label).
+  template <typename T, typename Map>
+  std::optional<Volume<T>> TakeMapped(const std::string& path, Map map, ProgressSink* progress = nullptr) {
+    const std::shared_ptr<Kept> kept = TakeShared(path);
+    if (!kept) return std::nullopt;
+    return std::visit([&](const auto& volume) { return Mapped<T>(volume, map, progress); }, *kept);
   }
 
  private:
@@ -85,6 +76,25 @@ class VolumeShelf {
     int reads = 0;
     std::shared_ptr<Kept> volume;  // shared with a Take that copies it outside the lock
   };
+  std::shared_ptr<Kept> TakeShared(const std::string& path) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    const auto it = entries_.find(path);
+    if (it == entries_.end() || it->second.reads <= 0 || !it->second.volume) return nullptr;
+    std::shared_ptr<Kept> kept = it->second.volume;
+    if (--it->second.reads == 0) entries_.erase(it);
+    return kept;
+  }
+
+  template <typename T, typename K, typename Map>
+  static Volume<T> Mapped(const Volume<K>& volume, Map map, ProgressSink* progress) {
+    Volume<T> v = volume.template EmptyLike<T>();
+    v.voxels.reserve(volume.voxels.size());
+    ForPieces(volume.voxels.size(), kPollPiece, progress, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) v.voxels.push_back(static_cast<T>(map(volume.voxels[i])));
+    });
+    return v;
+  }
+
   std::mutex mutex_;
   std::map<std::string, Entry> entries_;
 };

@@ -164,7 +164,10 @@ long Repair(Volume<unsigned char>& mask, long* forced, ProgressSink* progress) {
         added = pass(1, stuck);
         changed += added;
       }
-      if (stuck == 0) return changed;
+      if (stuck == 0) {
+        if (progress) progress->Report(1.0);
+        return changed;
+      }
       const long removed = pass(0, stuck);
       changed += removed;
       if (removed == 0) break;
@@ -196,6 +199,7 @@ long Repair(Volume<unsigned char>& mask, long* forced, ProgressSink* progress) {
       *forced += removed;
       changed += removed;
     }
+    if (progress) progress->Report(1.0);
     return changed;
   }
   if (progress) progress->Report(1.0);

@@ -95,7 +95,8 @@ void GaussianSmooth(Volume<float>& volume, double sigmaVoxels, ProgressSink& pro
   progress.Report(to);
 }
 
-bool SameGrid(const Volume<float>& a, const Volume<short>& b) {
+template <typename T>
+bool SameGrid(const Volume<T>& a, const Volume<short>& b) {
   const double tol = 1e-4 * a.spacing.minCoeff();
   return a.size == b.size && (a.spacing - b.spacing).cwiseAbs().maxCoeff() < 1e-6 * a.spacing.maxCoeff() &&
          (a.origin - b.origin).cwiseAbs().maxCoeff() < tol &&
@@ -109,10 +110,10 @@ std::string Str(double v) {
 }
 
 // The lumen box of the mask (voxels equal to the label value), grown by `margin` voxels.
-Volume<float> CropAround(const Volume<float>& label, float value, long margin, std::array<long, 3>& first, long& count,
+Volume<float> CropAround(const Volume<unsigned char>& label, long margin, std::array<long, 3>& first, long& count,
                          ProgressSink& progress) {
   const long n0 = long(label.size[0]), n1 = long(label.size[1]), n2 = long(label.size[2]);
-  const auto isLumen = [value](float f) { return std::fabs(f - value) < 0.5f; };
+  const auto isLumen = [](unsigned char f) { return f != 0; };
   std::array<long, 3> lo{{std::numeric_limits<long>::max(), std::numeric_limits<long>::max(), std::numeric_limits<long>::max()}};
   std::array<long, 3> hi{{-1, -1, -1}};
   count = 0;
@@ -120,7 +121,7 @@ Volume<float> CropAround(const Volume<float>& label, float value, long margin, s
   for (long k = 0; k < n2; ++k) {
     if (k % 8 == 0) boxStep.Report(double(k) / double(n2));
     for (long j = 0; j < n1; ++j) {
-      const float* row = &label.voxels[label.Offset(0, std::size_t(j), std::size_t(k))];
+      const unsigned char* row = &label.voxels[label.Offset(0, std::size_t(j), std::size_t(k))];
       for (long i = 0; i < n0; ++i) {
         if (!isLumen(row[i])) continue;
         ++count;
@@ -144,7 +145,7 @@ Volume<float> CropAround(const Volume<float>& label, float value, long margin, s
   for (long k = lo[2]; k <= hi[2]; ++k) {
     if (k % 8 == 0) copyStep.Report(double(k - lo[2]) / double(hi[2] - lo[2] + 1));
     for (long j = lo[1]; j <= hi[1]; ++j) {
-      const float* in = &label.voxels[label.Offset(0, std::size_t(j), std::size_t(k))];
+      const unsigned char* in = &label.voxels[label.Offset(0, std::size_t(j), std::size_t(k))];
       float* out = &crop.voxels[crop.Offset(std::size_t(lo[0] - first[0]), std::size_t(j - first[1]), std::size_t(k - first[2]))];
       for (long i = lo[0]; i <= hi[0]; ++i) out[i - lo[0]] = isLumen(in[i]) ? 1.0f : 0.0f;
     }
@@ -170,6 +171,11 @@ class Timer {
 
 SurfaceResult ReconstructSurface(const Volume<float>& label, const Volume<short>* ct,
                                  const SurfaceOptions& options, ProgressSink& progress) {
+  return ReconstructSurfaceFromMask(LumenMask(label, options.labelValue), ct, options, progress);
+}
+
+SurfaceResult ReconstructSurfaceFromMask(const Volume<unsigned char>& label, const Volume<short>* ct,
+                                         const SurfaceOptions& options, ProgressSink& progress) {
   if (ct && !SameGrid(label, *ct))
     throw Error("reference CT: its grid (size, spacing, origin or direction) differs from the label map's");
   if (options.targetFaces < 100) throw Error("target faces: must be at least 100");
@@ -183,7 +189,7 @@ SurfaceResult ReconstructSurface(const Volume<float>& label, const Volume<short>
   const long margin = static_cast<long>(std::ceil(3.0 * sigma + options.bandVoxels)) + 3;
   std::array<long, 3> first{};
   SubProgress cropStep(progress, 0.0, 0.02);
-  Volume<float> field = CropAround(label, static_cast<float>(options.labelValue), margin, first, result.lumenVoxels, cropStep);
+  Volume<float> field = CropAround(label, margin, first, result.lumenVoxels, cropStep);
   if (result.lumenVoxels == 0) throw Error("label map: no voxel has the label value " + Str(options.labelValue));
   Volume<unsigned char> ball = field.Like<unsigned char>(0);
   {

@@ -35,6 +35,7 @@
 #include "Segmentation/LumenTopology.h"
 #include "Surface/MeshTopology.h"
 
+#include <cmath>
 #include <string>
 #include <utility>
 #include <vector>
@@ -70,10 +71,34 @@ struct SurfaceResult {
   std::vector<std::pair<std::string, double>> stepSeconds;  // topology, field, contour, decimation, smoothing, ...
 };
 
+// Whether a label map's voxel holds the label value (integer labels read as any type).
+template <typename T>
+bool IsLabel(T voxel, double value) {
+  return std::fabs(static_cast<float>(voxel) - static_cast<float>(value)) < 0.5f;
+}
+
 // `ct` may be null (label-only path); when given it must be on the label map's grid.
 // Throws colonmap::Error for an empty label (no voxel with the label value), a CT on another
 // grid, or a contour that yields no surface; Cancelled when progress is cancelled.
 SurfaceResult ReconstructSurface(const Volume<float>& label, const Volume<short>* ct,
                                  const SurfaceOptions& options, ProgressSink& progress);
+
+// The same from the lumen's mask on the label map's grid (every non-zero voxel is lumen: not a
+// label map of several labels, see LumenMask):
+// ColonSurface makes the mask as it takes the label map, without a float copy of a CT-sized
+// volume (options.labelValue then only names the label in messages).
+SurfaceResult ReconstructSurfaceFromMask(const Volume<unsigned char>& lumen, const Volume<short>* ct,
+                                         const SurfaceOptions& options, ProgressSink& progress);
+
+// 1 where |label - value| < 0.5, else 0; `progress`, when given, polled between pieces.
+template <typename T>
+Volume<unsigned char> LumenMask(const Volume<T>& label, double value, ProgressSink* progress = nullptr) {
+  Volume<unsigned char> mask = label.template EmptyLike<unsigned char>();
+  mask.voxels.reserve(label.voxels.size());
+  ForPieces(label.voxels.size(), kPollPiece, progress, [&](std::size_t b, std::size_t e) {
+    for (std::size_t v = b; v < e; ++v) mask.voxels.push_back(IsLabel(label.voxels[v], value) ? 1 : 0);
+  });
+  return mask;
+}
 
 }  // namespace colonmap::surface

@@ -308,6 +308,16 @@ TEST(ImageIO, ShelfHandsOnExpectedVolumesAndFallsBackToTheFile) {
   EXPECT_EQ(io::ReadImageKept<unsigned char>(&shelf, notKept, "label").voxels, other.voxels);
   EXPECT_EQ(io::ReadImageKept<unsigned char>(nullptr, kept, "label").voxels, label.voxels);
 
+  // Mapped as it is taken (ColonSurface's lumen mask of one label): label 7 only.
+  shelf.Expect(kept, 1);
+  shelf.Put(kept, Volume<unsigned char>(inMemory));
+  const std::optional<Volume<unsigned char>> mask =
+      shelf.TakeMapped<unsigned char>(kept, [](unsigned char v) { return v == 7 ? 1 : 0; });
+  ASSERT_TRUE(mask);
+  EXPECT_EQ(std::count(mask->voxels.begin(), mask->voxels.end(), 1), 1);
+  EXPECT_EQ(mask->voxels[0], 1);
+  EXPECT_FALSE(shelf.TakeMapped<unsigned char>(kept, [](unsigned char v) { return v; }));  // taken: gone
+
   // A conversion taken from the shelf polls the host between its pieces: a cancelled host stops it.
   struct Cancelling : ProgressSink {
     int reports = 0;

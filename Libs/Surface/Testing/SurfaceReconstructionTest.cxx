@@ -10,6 +10,8 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -214,6 +216,14 @@ TEST(SurfaceReconstruction, DeterministicAndReportsDroppedComponents) {
   const SurfaceResult b = ReconstructSurface(label, nullptr, o, np);
   EXPECT_EQ(a.mesh.V, b.mesh.V);
   EXPECT_EQ(a.mesh.F, b.mesh.F);
+  // From the lumen's mask (ColonSurface's path): the same surface. Another label value is
+  // not the lumen.
+  const SurfaceResult fromMask = ReconstructSurfaceFromMask(LumenMask(label, 1.0), nullptr, o, np);
+  EXPECT_EQ(fromMask.mesh.V, a.mesh.V);
+  EXPECT_EQ(fromMask.mesh.F, a.mesh.F);
+  EXPECT_EQ(fromMask.lumenVoxels, a.lumenVoxels);
+  const Volume<unsigned char> other = LumenMask(label, 2.0);
+  EXPECT_EQ(std::count(other.voxels.begin(), other.voxels.end(), 1), 0);
   ASSERT_EQ(a.droppedComponents.size(), 1u);
   EXPECT_GT(a.droppedComponents[0], 0);
   EXPECT_EQ(a.topology.boundaryLoops, 0);

@@ -32,7 +32,17 @@ void Run(cli::ModuleContext& ctx) {
   // A report after each file, and between the pieces of a volume taken from the shelf: each is a
   // poll of Cancel too (ColonSupineProne's promise: 0.5 s).
   SubProgress labelStep(ctx.progress, 0.0, 0.4), ctStep(ctx.progress, 0.4, 0.8), virtualStep(ctx.progress, 0.8, 1.0);
-  const Volume<float> label = io::ReadImageKept<float>(ctx.shelf, labelPath, "input label map", ctx.ReaderNotes(), &labelStep);
+  // The lumen's mask straight from the kept label map; a file is read as float (any integer
+  // label type, exact up to 2^24), then masked.
+  const double labelValue = options.labelValue;
+  std::optional<Volume<unsigned char>> kept;
+  if (ctx.shelf)
+    kept = ctx.shelf->TakeMapped<unsigned char>(labelPath, [labelValue](auto v) { return surface::IsLabel(v, labelValue); },
+                                               &labelStep);
+  const Volume<unsigned char> label =
+      kept ? std::move(*kept)
+           : surface::LumenMask(io::ReadImage<float>(labelPath, "input label map", ctx.ReaderNotes()), labelValue, &labelStep);
+  kept.reset();
   ctx.progress.Report(0.4);
   std::optional<Volume<short>> ct;
   if (!ctPath.empty()) ct = io::ReadImageKept<short>(ctx.shelf, ctPath, "reference CT", ctx.ReaderNotes(), &ctStep);
@@ -50,7 +60,7 @@ void Run(cli::ModuleContext& ctx) {
   ctx.progress.StartStage("Surface", ct ? "iso-surface of the CT near the label boundary" : "surface of the label");
   surface::SurfaceResult result;
   try {
-    result = surface::ReconstructSurface(label, ct ? &*ct : nullptr, options, ctx.progress);
+    result = surface::ReconstructSurfaceFromMask(label, ct ? &*ct : nullptr, options, ctx.progress);
   } catch (const Cancelled&) {
     throw;
   } catch (const Error& e) {
