@@ -39,8 +39,7 @@ CleansingResult Cleanse(const Volume<short>& ct, const CleansingParameters& p, P
       layerStep(progress, 0.585, 0.6);
   const TaggedMaterial tagged = FindTaggedMaterial(ct, p, find);
   // The outputs start as the CT and no tagged voxel, made piece by piece (CT-sized).
-  r.cleansed = ct.EmptyLike<short>();
-  AssignReporting(ct.voxels.data(), ct.voxels.size(), r.cleansed.voxels, &copyStep);
+  r.cleansed = ct.Copy(&copyStep);
   r.tagged = ct.Like<unsigned char>(0, &taggedStep);
   r.regions = tagged.regions;
   r.regionsDropped = tagged.regionsDropped;
@@ -63,8 +62,7 @@ CleansingResult Cleanse(const Volume<short>& ct, const CleansingParameters& p, P
   // The values of `layer`: partial-volume layer around a core (kLayer), a voxel of it on the
   // air-fluid level (kLevel, found once by levelTest below), the film zone (kZone, see there).
   constexpr unsigned char kLayer = 1, kZone = 2, kLevel = 3;
-  Volume<unsigned char> layer = tagged.core.EmptyLike<unsigned char>();
-  AssignReporting(tagged.core.voxels.data(), tagged.core.voxels.size(), layer.voxels, &layerStep);
+  Volume<unsigned char> layer = tagged.core.Copy(&layerStep);
   for (long k = 0; k < n[2]; ++k) {
     progress.Report(0.6 + 0.2 * double(k) / double(n[2]));
     for (long j = 0; j < n[1]; ++j)

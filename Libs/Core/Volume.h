@@ -54,6 +54,13 @@ struct Volume {
     return v;
   }
 
+  // A copy, made piece by piece with `progress` polled between pieces.
+  Volume<T> Copy(ProgressSink* progress) const {
+    Volume<T> v = EmptyLike<T>();
+    AssignReporting(voxels.data(), voxels.size(), v.voxels, progress);
+    return v;
+  }
+
   // Continuous index -> LPS mm.
   Eigen::Vector3d IndexToPhysical(const Eigen::Vector3d& index) const {
     return origin + direction * spacing.cwiseProduct(index);
@@ -63,5 +70,17 @@ struct Volume {
     return (direction.transpose() * (p - origin)).cwiseQuotient(spacing);
   }
 };
+
+// An image of pixel type T on the grid of `in`, each voxel map(in's voxel), made piece by piece
+// with `progress` (when given) polled between pieces.
+template <typename T, typename K, typename Map>
+Volume<T> MapVoxels(const Volume<K>& in, Map map, ProgressSink* progress = nullptr) {
+  Volume<T> out = in.template EmptyLike<T>();
+  out.voxels.reserve(in.voxels.size());
+  ForPieces(in.voxels.size(), kPollPiece, progress, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) out.voxels.push_back(static_cast<T>(map(in.voxels[i])));
+  });
+  return out;
+}
 
 }  // namespace colonmap

@@ -58,7 +58,7 @@ class VolumeShelf {
       std::atomic_thread_fence(std::memory_order_acquire);
       return std::move(*same);
     }
-    return std::visit([&](const auto& volume) { return Mapped<T>(volume, [](auto v) { return static_cast<T>(v); }, progress); },
+    return std::visit([&](const auto& volume) { return MapVoxels<T>(volume, [](auto v) { return static_cast<T>(v); }, progress); },
                       *kept);
   }
 
@@ -67,7 +67,7 @@ class VolumeShelf {
   std::optional<Volume<T>> TakeMapped(const std::string& path, Map map, ProgressSink* progress = nullptr) {
     const std::shared_ptr<Kept> kept = TakeShared(path);
     if (!kept) return std::nullopt;
-    return std::visit([&](const auto& volume) { return Mapped<T>(volume, map, progress); }, *kept);
+    return std::visit([&](const auto& volume) { return MapVoxels<T>(volume, map, progress); }, *kept);
   }
 
  private:
@@ -83,16 +83,6 @@ class VolumeShelf {
     std::shared_ptr<Kept> kept = it->second.volume;
     if (--it->second.reads == 0) entries_.erase(it);
     return kept;
-  }
-
-  template <typename T, typename K, typename Map>
-  static Volume<T> Mapped(const Volume<K>& volume, Map map, ProgressSink* progress) {
-    Volume<T> v = volume.template EmptyLike<T>();
-    v.voxels.reserve(volume.voxels.size());
-    ForPieces(volume.voxels.size(), kPollPiece, progress, [&](std::size_t b, std::size_t e) {
-      for (std::size_t i = b; i < e; ++i) v.voxels.push_back(static_cast<T>(map(volume.voxels[i])));
-    });
-    return v;
   }
 
   std::mutex mutex_;

@@ -80,7 +80,8 @@ void GaussianSmooth(Volume<float>& volume, double sigmaVoxels, ProgressSink& pro
   const int nx = int(volume.size[0]), ny = int(volume.size[1]), nz = int(volume.size[2]);
   const std::size_t sliceVoxels = volume.size[0] * volume.size[1];
   const int slab = std::max(1, int(kPollPiece / std::max<std::size_t>(1, sliceVoxels)));
-  std::vector<float> smoothed(volume.voxels.size());
+  std::vector<float> smoothed;
+  smoothed.reserve(volume.voxels.size());  // filled slab by slab: first touched between polls
   for (int k0 = 0; k0 < nz; k0 += slab) {
     const int k1 = std::min(nz, k0 + slab) - 1;
     progress.Report(from + (to - from) * double(k0) / double(nz));
@@ -89,7 +90,7 @@ void GaussianSmooth(Volume<float>& volume, double sigmaVoxels, ProgressSink& pro
     auto* scalars = vtkFloatArray::SafeDownCast(smooth->GetOutput()->GetPointData()->GetScalars());
     if (!scalars || scalars->GetNumberOfValues() != vtkIdType(sliceVoxels) * (k1 - k0 + 1))
       throw Error("surface: the Gaussian smoothing gave no field");
-    std::copy(scalars->GetPointer(0), scalars->GetPointer(0) + scalars->GetNumberOfValues(), smoothed.begin() + std::ptrdiff_t(sliceVoxels) * k0);
+    smoothed.insert(smoothed.end(), scalars->GetPointer(0), scalars->GetPointer(0) + scalars->GetNumberOfValues());
   }
   volume.voxels.swap(smoothed);
   progress.Report(to);
@@ -113,7 +114,6 @@ std::string Str(double v) {
 Volume<float> CropAround(const Volume<unsigned char>& label, long margin, std::array<long, 3>& first, long& count,
                          ProgressSink& progress) {
   const long n0 = long(label.size[0]), n1 = long(label.size[1]), n2 = long(label.size[2]);
-  const auto isLumen = [](unsigned char f) { return f != 0; };
   std::array<long, 3> lo{{std::numeric_limits<long>::max(), std::numeric_limits<long>::max(), std::numeric_limits<long>::max()}};
   std::array<long, 3> hi{{-1, -1, -1}};
   count = 0;
@@ -123,7 +123,7 @@ Volume<float> CropAround(const Volume<unsigned char>& label, long margin, std::a
     for (long j = 0; j < n1; ++j) {
       const unsigned char* row = &label.voxels[label.Offset(0, std::size_t(j), std::size_t(k))];
       for (long i = 0; i < n0; ++i) {
-        if (!isLumen(row[i])) continue;
+        if (!row[i]) continue;
         ++count;
         lo[0] = std::min(lo[0], i), hi[0] = std::max(hi[0], i);
         lo[1] = std::min(lo[1], j), hi[1] = std::max(hi[1], j);
@@ -147,7 +147,7 @@ Volume<float> CropAround(const Volume<unsigned char>& label, long margin, std::a
     for (long j = lo[1]; j <= hi[1]; ++j) {
       const unsigned char* in = &label.voxels[label.Offset(0, std::size_t(j), std::size_t(k))];
       float* out = &crop.voxels[crop.Offset(std::size_t(lo[0] - first[0]), std::size_t(j - first[1]), std::size_t(k - first[2]))];
-      for (long i = lo[0]; i <= hi[0]; ++i) out[i - lo[0]] = isLumen(in[i]) ? 1.0f : 0.0f;
+      for (long i = lo[0]; i <= hi[0]; ++i) out[i - lo[0]] = in[i] ? 1.0f : 0.0f;
     }
   }
   return crop;

@@ -84,21 +84,16 @@ SurfaceResult ReconstructSurface(const Volume<float>& label, const Volume<short>
                                  const SurfaceOptions& options, ProgressSink& progress);
 
 // The same from the lumen's mask on the label map's grid (every non-zero voxel is lumen: not a
-// label map of several labels, see LumenMask):
-// ColonSurface makes the mask as it takes the label map, without a float copy of a CT-sized
-// volume (options.labelValue then only names the label in messages).
+// label map of several labels, see LumenMask). ColonSurface makes the mask as it takes the label
+// map, without a float copy of a CT-sized volume (options.labelValue then only names the label
+// in messages).
 SurfaceResult ReconstructSurfaceFromMask(const Volume<unsigned char>& lumen, const Volume<short>* ct,
                                          const SurfaceOptions& options, ProgressSink& progress);
 
 // 1 where |label - value| < 0.5, else 0; `progress`, when given, polled between pieces.
 template <typename T>
 Volume<unsigned char> LumenMask(const Volume<T>& label, double value, ProgressSink* progress = nullptr) {
-  Volume<unsigned char> mask = label.template EmptyLike<unsigned char>();
-  mask.voxels.reserve(label.voxels.size());
-  ForPieces(label.voxels.size(), kPollPiece, progress, [&](std::size_t b, std::size_t e) {
-    for (std::size_t v = b; v < e; ++v) mask.voxels.push_back(IsLabel(label.voxels[v], value) ? 1 : 0);
-  });
-  return mask;
+  return MapVoxels<unsigned char>(label, [value](T v) { return IsLabel(v, value); }, progress);
 }
 
 }  // namespace colonmap::surface

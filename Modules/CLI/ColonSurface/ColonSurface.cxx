@@ -28,21 +28,19 @@ void Run(cli::ModuleContext& ctx) {
   ctx.progress.Plan({{"Reading", 2}, {"Surface", 10}, {"Writing", 1}});
 
   ctx.progress.StartStage("Reading", "label map and reference CT");
-  // Any integer label type is read as float (exact for labels up to 2^24).
   // A report after each file, and between the pieces of a volume taken from the shelf: each is a
   // poll of Cancel too (ColonSupineProne's promise: 0.5 s).
   SubProgress labelStep(ctx.progress, 0.0, 0.4), ctStep(ctx.progress, 0.4, 0.8), virtualStep(ctx.progress, 0.8, 1.0);
-  // The lumen's mask straight from the kept label map; a file is read as float (any integer
-  // label type, exact up to 2^24), then masked.
+  // The lumen's mask straight from the kept label map, else from the file read as float (any
+  // integer label type, exact up to 2^24).
   const double labelValue = options.labelValue;
-  std::optional<Volume<unsigned char>> kept;
-  if (ctx.shelf)
-    kept = ctx.shelf->TakeMapped<unsigned char>(labelPath, [labelValue](auto v) { return surface::IsLabel(v, labelValue); },
-                                               &labelStep);
-  const Volume<unsigned char> label =
-      kept ? std::move(*kept)
-           : surface::LumenMask(io::ReadImage<float>(labelPath, "input label map", ctx.ReaderNotes()), labelValue, &labelStep);
-  kept.reset();
+  const Volume<unsigned char> label = [&] {
+    if (ctx.shelf)
+      if (auto kept = ctx.shelf->TakeMapped<unsigned char>(
+              labelPath, [labelValue](auto v) { return surface::IsLabel(v, labelValue); }, &labelStep))
+        return std::move(*kept);
+    return surface::LumenMask(io::ReadImage<float>(labelPath, "input label map", ctx.ReaderNotes()), labelValue, &labelStep);
+  }();
   ctx.progress.Report(0.4);
   std::optional<Volume<short>> ct;
   if (!ctPath.empty()) ct = io::ReadImageKept<short>(ctx.shelf, ctPath, "reference CT", ctx.ReaderNotes(), &ctStep);
