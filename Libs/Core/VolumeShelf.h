@@ -8,7 +8,8 @@
 // The pipeline says which files to keep and how many stages will read each (Expect); a stage
 // that wrote such a file leaves a copy (Put); a stage about to read a file takes it (Take), as
 // the type it asks for (converted like a reader would), and the last expected read moves it off
-// the shelf, so nothing is held longer than needed. Files not expected are never kept. Safe to
+// the shelf, so nothing is held longer than needed; a stage that only reads it shares it (Share:
+// no copy, held until the last reader is done). Files not expected are never kept. Safe to
 // use from several threads (the two scans' jobs share one shelf).
 #include "Core/Volume.h"
 
@@ -60,6 +61,19 @@ class VolumeShelf {
     }
     return std::visit([&](const auto& volume) { return MapVoxels<T>(volume, [](auto v) { return static_cast<T>(v); }, progress); },
                       *kept);
+  }
+
+  // The volume kept for `path`, to read only, or null: the kept volume itself when it is kept
+  // as T (no copy: the readers of one CT share it, and it lives until the last of them lets go),
+  // else converted as Take does.
+  template <typename T>
+  std::shared_ptr<const Volume<T>> Share(const std::string& path, ProgressSink* progress = nullptr) {
+    const std::shared_ptr<Kept> kept = TakeShared(path);
+    if (!kept) return nullptr;
+    if (const auto* same = std::get_if<Volume<T>>(kept.get())) return std::shared_ptr<const Volume<T>>(kept, same);
+    return std::make_shared<const Volume<T>>(
+        std::visit([&](const auto& volume) { return MapVoxels<T>(volume, [](auto v) { return static_cast<T>(v); }, progress); },
+                   *kept));
   }
 
   // The same with each voxel mapped by `map` (e.g. a label map to a 0/1 mask of one label).

@@ -8,6 +8,7 @@
 #include "IO/ImageCheck.h"
 
 #include <functional>
+#include <memory>
 #include <string>
 
 namespace colonmap::io {
@@ -30,6 +31,16 @@ Volume<T> ReadImageKept(VolumeShelf* shelf, const std::string& path, const std::
   if (shelf)
     if (std::optional<Volume<T>> kept = shelf->Take<T>(path, progress)) return std::move(*kept);
   return ReadImage<T>(path, what, note);
+}
+
+// The same for a stage that only reads the volume: shared with the shelf and the other readers
+// (VolumeShelf::Share, no copy), else read from the file.
+template <typename T>
+std::shared_ptr<const Volume<T>> ReadImageShared(VolumeShelf* shelf, const std::string& path, const std::string& what,
+                                                 const NoteSink& note = {}, ProgressSink* progress = nullptr) {
+  if (shelf)
+    if (std::shared_ptr<const Volume<T>> kept = shelf->Share<T>(path, progress)) return kept;
+  return std::make_shared<const Volume<T>>(ReadImage<T>(path, what, note));
 }
 
 enum class Compression {

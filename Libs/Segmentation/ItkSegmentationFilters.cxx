@@ -102,7 +102,7 @@ std::uint32_t ItkLabelComponents26(const Grid& grid, const unsigned char* mask, 
   return static_cast<std::uint32_t>(filter->GetObjectCount());
 }
 
-void FillCavities6(const Grid& grid, std::vector<unsigned char>& mask, ProgressSink& progress) {
+void ItkFillCavities6(const Grid& grid, std::vector<unsigned char>& mask, ProgressSink& progress) {
   auto filter = itk::BinaryFillholeImageFilter<MaskImage>::New();
   filter->SetInput(Wrap(grid, mask.data()));
   filter->SetForegroundValue(1);

@@ -28,10 +28,9 @@ struct Grid {
 std::uint32_t ItkLabelComponents26(const Grid& grid, const unsigned char* mask, std::vector<std::uint32_t>& labels,
                                    ProgressSink& progress);
 
-// itk::BinaryFillholeImageFilter with face connectivity: background voxels (0) that are not
-// 6-connected to the grid border become foreground (1), in place. With the (26,6) pair these
-// are exactly the cavities of the 26-connected foreground.
-void FillCavities6(const Grid& grid, std::vector<unsigned char>& mask, ProgressSink& progress);
+// itk::BinaryFillholeImageFilter with face connectivity: the reference the tests hold
+// FillCavities6 (LabelComponents.h) to. Same contract.
+void ItkFillCavities6(const Grid& grid, std::vector<unsigned char>& mask, ProgressSink& progress);
 
 // itk::SignedMaurerDistanceMapImageFilter in mm (image spacing), exact Euclidean, inside
 // positive: for a voxel with mask != 0, the distance from its centre to the nearest centre of a

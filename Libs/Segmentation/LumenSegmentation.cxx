@@ -42,7 +42,7 @@ struct Crop {
   }
 };
 
-Crop CropComponent(const Volume<short>& ct, const std::vector<std::uint32_t>& labels, std::uint32_t label,
+Crop CropComponent(const Volume<short>& ct, const detail::ComponentRuns& air, std::uint32_t label,
                    const AirComponent& c, ProgressSink& progress) {
   Crop crop;
   crop.first = c.boxMin;
@@ -54,9 +54,11 @@ Crop CropComponent(const Volume<short>& ct, const std::vector<std::uint32_t>& la
   crop.mask.Allocate(0);
   for (std::size_t k = c.boxMin[2]; k <= c.boxMax[2]; ++k) {
     for (std::size_t j = c.boxMin[1]; j <= c.boxMax[1]; ++j) {
-      const std::uint32_t* row = &labels[ct.Offset(0, j, k)];
-      unsigned char* out = &crop.mask.At(1, j - c.boxMin[1] + 1, k - c.boxMin[2] + 1);
-      for (std::size_t i = c.boxMin[0]; i <= c.boxMax[0]; ++i) out[i - c.boxMin[0]] = row[i] == label;
+      const std::size_t row = j + ct.size[1] * k;
+      unsigned char* out = &crop.mask.At(1, j - c.boxMin[1] + 1, k - c.boxMin[2] + 1);  // voxel i = boxMin[0]
+      for (std::size_t r = air.rowStart[row]; r < air.rowStart[row + 1]; ++r)
+        if (air.runs[r].label == label)
+          std::fill(out + (air.runs[r].first - c.boxMin[0]), out + (air.runs[r].last - c.boxMin[0] + 1), 1);
     }
     progress.Report(double(k - c.boxMin[2] + 1) / double(c.boxMax[2] - c.boxMin[2] + 1));
   }
@@ -209,34 +211,20 @@ LumenSegmentation SegmentColonLumen(const Volume<short>& ct, const SegmentationO
     clock = now;
   };
 
-  // 1. Air.
-  std::vector<unsigned char> air(count);
-  {
-    SubProgress step(progress, 0.0, 0.04);
-    const short threshold = static_cast<short>(std::ceil(options.airThresholdHU));  // HU < t <=> HU < ceil(t) for integers
-    const std::size_t slice = n0 * n1;
-    for (std::size_t k = 0; k < n2; ++k) {
-      const short* in = &ct.voxels[k * slice];
-      unsigned char* out = &air[k * slice];
-      for (std::size_t v = 0; v < slice; ++v) out[v] = in[v] < threshold;
-      if (k % 16 == 15) step.Report(double(k + 1) / double(n2));
-    }
-  }
-
-  // 2. Components and their statistics.
+  // 1-2. Air (cleansed fluid is air already) and its components, kept as runs along i.
   detail::Grid grid;
   for (int d = 0; d < 3; ++d) {
     grid.size[d] = ct.size[d];
     grid.spacing[d] = ct.spacing[d];
   }
-  std::vector<std::uint32_t> labels;
-  std::uint32_t labelCount = 0;
+  detail::ComponentRuns air;
   {
-    SubProgress step(progress, 0.04, 0.35);
-    labelCount = detail::LabelComponents26(grid, air.data(), labels, step);
+    SubProgress step(progress, 0.0, 0.35);
+    const short threshold = static_cast<short>(std::ceil(options.airThresholdHU));  // HU < t <=> HU < ceil(t) for integers
+    air = detail::LabelComponentRunsBelow26(grid, ct.voxels.data(), threshold, step);
   }
+  const std::uint32_t labelCount = air.count;
   lap("threshold and components");
-  std::vector<unsigned char>().swap(air);
   std::vector<AirComponent> byLabel(labelCount + 1);
   // The index axis closest to the body's long (LPS z, superior) axis; the other two run across.
   int longAxis = 0;
@@ -244,6 +232,7 @@ LumenSegmentation SegmentColonLumen(const Volume<short>& ct, const SegmentationO
     if (std::abs(ct.direction(2, d)) > std::abs(ct.direction(2, longAxis))) longAxis = d;
   const std::size_t superiorIndex = ct.direction(2, longAxis) > 0 ? ct.size[longAxis] - 1 : 0;
   std::vector<bool> touchesSide(labelCount + 1, false), touchesTop(labelCount + 1, false);
+  // Sums of voxel indices: integers, exact in a double whatever the order of the sums.
   std::vector<Eigen::Vector3d> indexSum(labelCount + 1, Eigen::Vector3d::Zero());
   for (auto& c : byLabel) {
     c.boxMin = {{n0, n1, n2}};
@@ -253,7 +242,7 @@ LumenSegmentation SegmentColonLumen(const Volume<short>& ct, const SegmentationO
     SubProgress step(progress, 0.35, 0.45);
     for (std::size_t k = 0; k < n2; ++k) {
       for (std::size_t j = 0; j < n1; ++j) {
-        const std::uint32_t* row = &labels[ct.Offset(0, j, k)];
+        const std::size_t row = j + n1 * k;
         const std::size_t at[3] = {0, j, k};
         bool rowSide = false, rowTop = false;  // the row lies on a side face / the superior face
         for (int d = 1; d < 3; ++d) {
@@ -263,16 +252,16 @@ LumenSegmentation SegmentColonLumen(const Volume<short>& ct, const SegmentationO
           else
             rowSide = rowSide || border;
         }
-        for (std::size_t i = 0; i < n0; ++i) {
-          const std::uint32_t l = row[i];
-          if (!l) continue;
-          if (rowTop || (longAxis == 0 && i == superiorIndex)) touchesTop[l] = true;
+        for (std::size_t r = air.rowStart[row]; r < air.rowStart[row + 1]; ++r) {
+          const detail::ComponentRuns::Run& run = air.runs[r];
+          const std::size_t l = run.label, first = run.first, last = run.last, length = last - first + 1;
+          if (rowTop || (longAxis == 0 && first <= superiorIndex && superiorIndex <= last)) touchesTop[l] = true;
           AirComponent& c = byLabel[l];
-          ++c.voxels;
-          c.boxMin = {{std::min(c.boxMin[0], i), std::min(c.boxMin[1], j), std::min(c.boxMin[2], k)}};
-          c.boxMax = {{std::max(c.boxMax[0], i), std::max(c.boxMax[1], j), std::max(c.boxMax[2], k)}};
-          indexSum[l] += Eigen::Vector3d(double(i), double(j), double(k));
-          if (rowSide || (longAxis != 0 && (i == 0 || i + 1 == n0))) touchesSide[l] = true;
+          c.voxels += length;
+          c.boxMin = {{std::min(c.boxMin[0], first), std::min(c.boxMin[1], j), std::min(c.boxMin[2], k)}};
+          c.boxMax = {{std::max(c.boxMax[0], last), std::max(c.boxMax[1], j), std::max(c.boxMax[2], k)}};
+          indexSum[l] += Eigen::Vector3d(double((first + last) * length / 2), double(j * length), double(k * length));
+          if (rowSide || (longAxis != 0 && (first == 0 || last + 1 == n0))) touchesSide[l] = true;
         }
       }
       if (k % 8 == 7) step.Report(double(k + 1) / double(n2));
@@ -320,7 +309,7 @@ LumenSegmentation SegmentColonLumen(const Volume<short>& ct, const SegmentationO
                         0.45 + 0.17 * (analysed + double(c.voxels)) / toAnalyse);
       analysed += double(c.voxels);
       SubProgress cropStep(step, 0.0, 0.1), fillStep(step, 0.1, 0.5), depthStep(step, 0.5, 1.0);
-      Crop crop = CropComponent(ct, labels, l, c, cropStep);
+      Crop crop = CropComponent(ct, air, l, c, cropStep);
       const std::size_t before = std::count(crop.mask.voxels.begin(), crop.mask.voxels.end(), 1);
       detail::FillCavities6(crop.Grid(), crop.mask.voxels, fillStep);
       const std::size_t filled = std::count(crop.mask.voxels.begin(), crop.mask.voxels.end(), 1) - before;
@@ -352,11 +341,11 @@ LumenSegmentation SegmentColonLumen(const Volume<short>& ct, const SegmentationO
         found = true;
         result.colon = result.components.size();
         result.cavityVoxelsFilled = filled;
-        candidates.insert(candidates.begin(), Candidate{result.colon, std::move(crop), std::move(depth), filled});
+        candidates.insert(candidates.begin(), Candidate{result.colon, std::move(crop), std::move(depth), filled, {}, {}});
       }
       // The largest candidates only: more pieces than kMaxPieces are not a collapsed colon.
       if (c.decision != Decision::Colon && candidate && candidates.size() + (found ? 0 : 1) < std::size_t(kMaxPieces))
-        candidates.push_back(Candidate{result.components.size(), std::move(crop), std::move(depth), filled});
+        candidates.push_back(Candidate{result.components.size(), std::move(crop), std::move(depth), filled, {}, {}});
     }
     result.components.push_back(std::move(c));
   }
@@ -387,7 +376,7 @@ LumenSegmentation SegmentColonLumen(const Volume<short>& ct, const SegmentationO
     }
     throw NoColonFound("no distended colon found: " + what);
   }
-  std::vector<std::uint32_t>().swap(labels);
+  air = detail::ComponentRuns();
   lap("shape analysis, cavity filling, depth");
 
   // 4 (first part). Topology: each candidate's ball, so that the piece ends below are not taken

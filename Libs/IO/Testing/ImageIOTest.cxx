@@ -318,6 +318,23 @@ TEST(ImageIO, ShelfHandsOnExpectedVolumesAndFallsBackToTheFile) {
   EXPECT_EQ(mask->voxels[0], 1);
   EXPECT_FALSE(shelf.TakeMapped<unsigned char>(kept, [](unsigned char v) { return v; }));  // taken: gone
 
+  // Stages that only read a volume share the kept one (no copy), also with a stage that takes it:
+  // the taker then gets a copy, and the sharers keep theirs after the last read.
+  shelf.Expect(kept, 3);
+  shelf.Put(kept, Volume<unsigned char>(inMemory));
+  const std::shared_ptr<const Volume<unsigned char>> a = io::ReadImageShared<unsigned char>(&shelf, kept, "label");
+  const std::shared_ptr<const Volume<unsigned char>> b = io::ReadImageShared<unsigned char>(&shelf, kept, "label");
+  EXPECT_EQ(a.get(), b.get());  // one volume
+  EXPECT_EQ(a->voxels, inMemory.voxels);
+  const Volume<unsigned char> taken = io::ReadImageKept<unsigned char>(&shelf, kept, "label");  // the last read
+  EXPECT_EQ(taken.voxels, inMemory.voxels);
+  EXPECT_EQ(a->voxels, inMemory.voxels);  // not moved from under the sharers
+  const std::shared_ptr<const Volume<float>> asFloat = io::ReadImageShared<float>(&shelf, kept, "label");  // gone: the file
+  EXPECT_EQ(asFloat->voxels[0], 0.0f);
+  shelf.Expect(kept, 1);
+  shelf.Put(kept, Volume<unsigned char>(inMemory));
+  EXPECT_EQ(io::ReadImageShared<float>(&shelf, kept, "label")->voxels[0], 7.0f);  // converted from the shelf
+
   // A conversion taken from the shelf polls the host between its pieces: a cancelled host stops it.
   struct Cancelling : ProgressSink {
     int reports = 0;

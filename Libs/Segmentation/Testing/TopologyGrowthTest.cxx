@@ -140,6 +140,46 @@ TEST(TopologyGrowth, OurComponentLabelsAreItksOnNoiseAndShapes) {
   EXPECT_THROW(detail::LabelComponents26(GridOf(block), block.voxels.data(), labels, cancelling), Cancelled);
 }
 
+TEST(TopologyGrowth, OurCavityFillingIsItksOnNoise) {
+  // Dense random masks (the background breaks into many pockets, some 6-connected to the border
+  // only through narrow paths) on odd grid sizes: every voxel as itk::BinaryFillholeImageFilter
+  // (face connectivity), the reference, fills it.
+  NullProgress none;
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    const double density = 0.55 + 0.05 * double(seed);  // background 0.4 .. 0.15: around 6-percolation (0.31)
+    Volume<unsigned char> m = Shape(21 + seed, 15 + 2 * seed, 13 + seed, [&](double i, double j, double k) {
+      return phantom::HashToUnit(phantom::Hash(seed + 50, std::uint64_t(i + 100 * j + 10000 * k))) < density;
+    });
+    Volume<unsigned char> ours = m, itk = m;
+    detail::FillCavities6(GridOf(ours), ours.voxels, none);
+    detail::ItkFillCavities6(GridOf(itk), itk.voxels, none);
+    EXPECT_EQ(ours.voxels, itk.voxels) << "seed " << seed;
+    EXPECT_GT(CountSet(ours), CountSet(m)) << "seed " << seed;  // there were cavities to fill
+    EXPECT_LT(CountSet(ours), ours.voxels.size()) << "seed " << seed;  // and background that reaches out
+  }
+}
+
+TEST(TopologyGrowth, ComponentRunsOfACtAreTheLabelsOfItsThresholdedMask) {
+  // The segmentation labels a CT's air as runs straight from the HU values: the same components,
+  // numbered the same, as the label grid of the thresholded mask.
+  NullProgress none;
+  Volume<unsigned char> mask = Shape(31, 19, 17, [](double i, double j, double k) {
+    return phantom::HashToUnit(phantom::Hash(9, std::uint64_t(i + 100 * j + 10000 * k))) < 0.12;
+  });
+  std::vector<short> hu(mask.voxels.size());
+  for (std::size_t v = 0; v < hu.size(); ++v) hu[v] = mask.voxels[v] ? short(-1000 + int(v % 500)) : short(40 - int(v % 300));
+  const detail::ComponentRuns runs = detail::LabelComponentRunsBelow26(GridOf(mask), hu.data(), -480, none);
+  std::vector<std::uint32_t> labels;
+  ASSERT_EQ(runs.count, detail::LabelComponents26(GridOf(mask), mask.voxels.data(), labels, none));
+  std::vector<std::uint32_t> painted(labels.size(), 0);
+  ASSERT_EQ(runs.rowStart.size(), mask.size[1] * mask.size[2] + 1);
+  for (std::size_t row = 0; row + 1 < runs.rowStart.size(); ++row)
+    for (std::size_t r = runs.rowStart[row]; r < runs.rowStart[row + 1]; ++r)
+      for (std::uint32_t i = runs.runs[r].first; i <= runs.runs[r].last; ++i) painted[row * mask.size[0] + i] = runs.runs[r].label;
+  EXPECT_EQ(painted, labels);
+  EXPECT_GT(runs.count, 10u);
+}
+
 TEST(TopologyGrowth, ItkFiltersOnKnownShapes) {
   NullProgress none;
   // Components: two blobs touching at a vertex are one (26-connectivity), a third apart.

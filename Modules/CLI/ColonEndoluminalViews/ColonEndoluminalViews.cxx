@@ -76,9 +76,12 @@ void RunColonEndoluminalViews(cli::ModuleContext& ctx) {
   // The renderer checks the display before the CTs take their time to read.
   EndoluminalRenderer renderer(options);
   ctx.progress.Report(0.2);
-  const Volume<short> supine = io::ReadImage<short>(supinePath, "supine CT", ctx.ReaderNotes());
+  // In ColonSupineProne the cleansed CTs the surface stage read are still in memory (shared).
+  const std::shared_ptr<const Volume<short>> supine =
+      io::ReadImageShared<short>(ctx.shelf, supinePath, "supine CT", ctx.ReaderNotes());
   ctx.progress.Report(0.6);
-  const Volume<short> prone = io::ReadImage<short>(pronePath, "prone CT", ctx.ReaderNotes());
+  const std::shared_ptr<const Volume<short>> prone =
+      io::ReadImageShared<short>(ctx.shelf, pronePath, "prone CT", ctx.ReaderNotes());
   ctx.progress.EndStage();
 
   ctx.progress.StartStage("Link", "carrying the cameras to the prone scan");
@@ -115,9 +118,9 @@ void RunColonEndoluminalViews(cli::ModuleContext& ctx) {
   for (std::size_t i = 0; i < records.size(); ++i) {
     const ViewRecord& r = records[i];
     const auto start = std::chrono::steady_clock::now();
-    RgbImage left = renderer.Render(supine, r.view.supine, "supine CT '" + supinePath + "', view '" + r.label + "'");
+    RgbImage left = renderer.Render(*supine, r.view.supine, "supine CT '" + supinePath + "', view '" + r.label + "'");
     ctx.progress.Report((i + 0.5) / records.size());
-    RgbImage right = renderer.Render(prone, r.view.prone, "prone CT '" + pronePath + "', view '" + r.label + "'");
+    RgbImage right = renderer.Render(*prone, r.view.prone, "prone CT '" + pronePath + "', view '" + r.label + "'");
     renderSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     DrawViewAxisCross(left, kAxisColour);
     DrawViewAxisCross(right, kAxisColour);

@@ -34,13 +34,15 @@ void Run(cli::ModuleContext& ctx) {
   ctx.progress.Plan({{"Reading", 2}, {"Segmentation", 10}, {"Writing", 1}});
 
   ctx.progress.StartStage("Reading", "reading the CT");
-  const Volume<short> ct = io::ReadImageKept<short>(ctx.shelf, input, "input CT", ctx.ReaderNotes(), &ctx.progress);
+  // Read only: shared with the pipeline's other readers of this CT (no copy).
+  const std::shared_ptr<const Volume<short>> ct =
+      io::ReadImageShared<short>(ctx.shelf, input, "input CT", ctx.ReaderNotes(), &ctx.progress);
   ctx.progress.EndStage();
 
   ctx.progress.StartStage("Segmentation", "air components, colon selection, topology-preserving growth");
   LumenSegmentation s;
   try {
-    s = SegmentColonLumen(ct, options, ctx.progress);
+    s = SegmentColonLumen(*ct, options, ctx.progress);
   } catch (const NoColonFound& e) {
     throw InputError("input CT", input, e.what());
   }

@@ -71,6 +71,9 @@ json ResultsJson(const std::map<std::string, std::string>& results) {
   return r;
 }
 
+// Whether the run renders endoluminal views: findings to look at, views wanted, CTs to render.
+bool EndoluminalViews(const Options& o) { return !o.findings.empty() && o.views && !o.labelMaps; }
+
 // Relative weights of a scan's steps in the host's progress (a block's is its steps' sum).
 constexpr double kCleansingWeight = 2.0, kSegmentationWeight = 5.0, kSurfaceWeight = 9.0, kFlatteningWeight = 1.0;
 
@@ -104,7 +107,7 @@ class Pipeline {
     const double cpuStart = cli::ProcessCpuSeconds();
     std::map<std::string, std::string> results;
     try {
-      results = cli::RunNestedModule(ctx_, m.name, m.xml, m.body, args);
+      results = cli::RunNestedModule(static_cast<cli::ProgressParent&>(ctx_.progress), m.name, m.xml, m.body, args, &shelf_);
     } catch (const Error& e) {
       // Stage folders are hidden temporaries until the end: the message names the final folders.
       throw Error(ctx_.outputs.UserNames(e.what()));
@@ -299,7 +302,7 @@ std::vector<std::pair<std::string, double>> Plan(const Options& o) {
   plan.emplace_back("registration", 2.0);
   if (o.views) plan.emplace_back("flat views", 1.0);
   if (!o.findings.empty()) plan.emplace_back("transfer findings", 0.2);
-  if (!o.findings.empty() && o.views && !o.labelMaps) plan.emplace_back("endoluminal views", 2.0);
+  if (EndoluminalViews(o)) plan.emplace_back("endoluminal views", 2.0);
   if (!o.truth.empty()) plan.emplace_back("evaluation", 0.3);
   plan.emplace_back("report", 0.2);
   return plan;
@@ -509,8 +512,9 @@ void Run(cli::ModuleContext& ctx) {
       // A colon in pieces (collapsed stretches) is bridged by virtual lumen, and its wall marked
       // (issue 21); a colon in one piece gives the same files as without.
       const std::string virtualLumen = p.In("segmentation", scan + "_virtual.nrrd");
-      // Handed on in memory: the cleansed CT to segmentation and surface, the labels to surface.
-      p.Shelf().Expect(cleansed, 2);
+      // Handed on in memory: the cleansed CT to segmentation, surface and the endoluminal views,
+      // the labels to surface.
+      p.Shelf().Expect(cleansed, EndoluminalViews(o) ? 3 : 2);
       p.Shelf().Expect(lumen, 1);
       p.Shelf().Expect(virtualLumen, 1);
       scanJobs[k].push_back({"cleansing " + scan, COLONMAP_STAGE(ColonCleansing),
@@ -557,7 +561,7 @@ void Run(cli::ModuleContext& ctx) {
     findingsTable = FindingsTable(io::ReadMarkups(o.findings, "findings"), io::ReadMarkups(mapped, "mapped findings"),
                                   truth.points.empty() ? nullptr : &truth);
     WriteFindingsNodes(ctx, mapped, findingsTable);
-    if (o.views && !o.labelMaps) {
+    if (EndoluminalViews(o)) {
       // Rendering needs an X display; without one the rest of the run still stands.
       try {
         p.Run("endoluminal views", COLONMAP_STAGE(ColonEndoluminalViews),

@@ -42,8 +42,8 @@ void Run(cli::ModuleContext& ctx) {
     return surface::LumenMask(io::ReadImage<float>(labelPath, "input label map", ctx.ReaderNotes()), labelValue, &labelStep);
   }();
   ctx.progress.Report(0.4);
-  std::optional<Volume<short>> ct;
-  if (!ctPath.empty()) ct = io::ReadImageKept<short>(ctx.shelf, ctPath, "reference CT", ctx.ReaderNotes(), &ctStep);
+  std::shared_ptr<const Volume<short>> ct;  // read only: shared with the pipeline's other readers
+  if (!ctPath.empty()) ct = io::ReadImageShared<short>(ctx.shelf, ctPath, "reference CT", ctx.ReaderNotes(), &ctStep);
   ctx.progress.Report(0.8);
   std::optional<Volume<unsigned char>> virtualLumen;
   if (!virtualPath.empty()) {
@@ -58,7 +58,7 @@ void Run(cli::ModuleContext& ctx) {
   ctx.progress.StartStage("Surface", ct ? "iso-surface of the CT near the label boundary" : "surface of the label");
   surface::SurfaceResult result;
   try {
-    result = surface::ReconstructSurfaceFromMask(label, ct ? &*ct : nullptr, options, ctx.progress);
+    result = surface::ReconstructSurfaceFromMask(label, ct.get(), options, ctx.progress);
   } catch (const Cancelled&) {
     throw;
   } catch (const Error& e) {
