@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
+#include <utility>
+#include <vector>
 
 namespace colonmap::cleansing {
 namespace {
@@ -31,15 +33,14 @@ void DominantAxis(const Volume<short>& ct, const Eigen::Vector3d& down, int& axi
   sign = inIndex[axis] >= 0.0 ? 1 : -1;
 }
 
-}  // namespace
-
-CleansingResult Cleanse(const Volume<short>& ct, const CleansingParameters& p, ProgressSink& progress) {
+// Everything but the cleansed CT itself, reading `ct` only: its new values go to `changes`
+// (offset, HU), to be written once all reads are done (the CT may be cleansed in place).
+CleansingResult Analyse(const Volume<short>& ct, const CleansingParameters& p, ProgressSink& progress,
+                        std::vector<std::pair<std::size_t, short>>& changes) {
   CleansingResult r;
-  SubProgress find(progress, 0.0, 0.54), copyStep(progress, 0.54, 0.57), taggedStep(progress, 0.57, 0.585),
-      layerStep(progress, 0.585, 0.6);
+  SubProgress find(progress, 0.0, 0.57), taggedStep(progress, 0.57, 0.585), layerStep(progress, 0.585, 0.6);
   const TaggedMaterial tagged = FindTaggedMaterial(ct, p, find);
-  // The outputs start as the CT and no tagged voxel, made piece by piece (CT-sized).
-  r.cleansed = ct.Copy(&copyStep);
+  // No tagged voxel yet, made piece by piece (CT-sized).
   r.tagged = ct.Like<unsigned char>(0, &taggedStep);
   r.regions = tagged.regions;
   r.regionsDropped = tagged.regionsDropped;
@@ -293,12 +294,28 @@ CleansingResult Cleanse(const Volume<short>& ct, const CleansingParameters& p, P
           if (phi <= 0.0) continue;
           cleansed = hu - phi * fluidMinusAir;
         }
-        r.cleansed.At(i, j, k) = static_cast<short>(std::lround(std::clamp(cleansed, -1024.0, 3071.0)));
+        changes.emplace_back(ct.Offset(std::size_t(i), std::size_t(j), std::size_t(k)),
+                             static_cast<short>(std::lround(std::clamp(cleansed, -1024.0, 3071.0))));
         ++r.taggedVoxels;
         if (phi >= 0.5) r.tagged.At(i, j, k) = 1;
       }
   }
   return r;
+}
+
+}  // namespace
+
+CleansingResult Cleanse(Volume<short>&& ct, const CleansingParameters& p, ProgressSink& progress) {
+  std::vector<std::pair<std::size_t, short>> changes;
+  CleansingResult r = Analyse(ct, p, progress, changes);
+  for (const auto& [offset, hu] : changes) ct.voxels[offset] = hu;
+  r.cleansed = std::move(ct);
+  return r;
+}
+
+CleansingResult Cleanse(const Volume<short>& ct, const CleansingParameters& p, ProgressSink& progress) {
+  SubProgress copyStep(progress, 0.0, 0.03), rest(progress, 0.03, 1.0);
+  return Cleanse(ct.Copy(&copyStep), p, rest);
 }
 
 }  // namespace colonmap::cleansing

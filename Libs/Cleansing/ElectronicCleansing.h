@@ -36,6 +36,9 @@ struct CleansingResult {
   double gravityAgreement = 0.0;
 };
 
+// The cleansed CT is a copy of `ct`; the overload on an rvalue cleanses it in place (no
+// CT-sized copy: the module's own read of the file).
 CleansingResult Cleanse(const Volume<short>& ct, const CleansingParameters& parameters, ProgressSink& progress);
+CleansingResult Cleanse(Volume<short>&& ct, const CleansingParameters& parameters, ProgressSink& progress);
 
 }  // namespace colonmap::cleansing

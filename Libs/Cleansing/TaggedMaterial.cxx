@@ -59,11 +59,13 @@ struct Region {
 
 TaggedMaterial FindTaggedMaterial(const Volume<short>& ct, const CleansingParameters& p, ProgressSink& progress) {
   TaggedMaterial result;
-  SubProgress coreStep(progress, 0.0, 0.03), visitedStep(progress, 0.03, 0.06);
+  SubProgress coreStep(progress, 0.0, 0.06);
   result.core = ct.Like<unsigned char>(0, &coreStep);
   const long reach = std::max(1, p.partialVolumeVoxels);
-  std::vector<unsigned char> visited;
-  FillReporting(visited, ct.NumberOfVoxels(), static_cast<unsigned char>(0), &visitedStep);
+  // The flood marks the voxels it has seen in `core` itself (kSeen); the kept regions' voxels
+  // become 1 at the end and the marks go (no second CT-sized buffer).
+  constexpr unsigned char kSeen = 2;
+  std::vector<unsigned char>& visited = result.core.voxels;
   std::vector<Region> flat;
   std::vector<std::size_t> queue;
   const std::size_t nx = ct.size[0], ny = ct.size[1], nz = ct.size[2];
@@ -76,7 +78,7 @@ TaggedMaterial FindTaggedMaterial(const Volume<short>& ct, const CleansingParame
         // Flood one bright region (6-connected); its border voxels near air vote for the level.
         Region region;
         queue.assign(1, start);
-        visited[start] = 1;
+        visited[start] = kSeen;
         while (!queue.empty()) {
           const std::size_t o = queue.back();
           queue.pop_back();
@@ -90,7 +92,7 @@ TaggedMaterial FindTaggedMaterial(const Volume<short>& ct, const CleansingParame
             if (ct.voxels[n] <= p.tagThresholdHU) {
               border = true;
             } else if (!visited[n]) {
-              visited[n] = 1;
+              visited[n] = kSeen;
               queue.push_back(n);
             }
           }
@@ -129,6 +131,10 @@ TaggedMaterial FindTaggedMaterial(const Volume<short>& ct, const CleansingParame
       result.gravityEstimated = true;
     }
   }
+  SubProgress clearStep(progress, 0.9, 0.95);
+  ForPieces(visited.size(), kPollPiece, &clearStep, [&](std::size_t b, std::size_t e) {
+    for (std::size_t v = b; v < e; ++v) visited[v] = 0;
+  });
   double flatness = 0.0;
   for (const Region& r : flat) {
     if (result.down.norm() == 0.0 || r.Direction().dot(result.down) < kMinimumAlignment) {

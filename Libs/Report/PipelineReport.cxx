@@ -208,10 +208,11 @@ void Times(const PipelineReportInput& in, HtmlReport& page) {
   std::vector<std::vector<std::string>> rows;
   for (const auto& s : in.summary.value("stages", json::array()))
     rows.push_back({s.value("name", std::string()), s.value("module", std::string()), Num(s, "seconds", 2)});
-  // Stages of the two scans run side by side: their own times overlap, the block's is the wait.
+  // Stages run side by side (the two scans', the two views'): their own times overlap, the
+  // block's is the wait.
   for (const auto& b : in.summary.value("stageBlocks", json::array()))
     if (b.value("sideBySide", false))
-      rows.push_back({b.value("name", std::string()) + " (both scans side by side)", "ColonSupineProne", Num(b, "seconds", 2)});
+      rows.push_back({b.value("name", std::string()) + " (side by side)", "ColonSupineProne", Num(b, "seconds", 2)});
   rows.push_back({"whole pipeline", "ColonSupineProne", Num(in.summary, "totalSeconds", 2)});
   page.Table({"stage", "module", "seconds"}, rows);
 }

@@ -24,11 +24,12 @@ void Run(cli::ModuleContext& ctx) {
   ctx.progress.Plan({{"Reading", 1}, {"Cleansing", 6}, {"Writing", 2}});
 
   ctx.progress.StartStage("Reading", "reading the CT");
-  const Volume<short> ct = io::ReadImage<short>(input, "input CT", ctx.ReaderNotes());
+  Volume<short> ct = io::ReadImage<short>(input, "input CT", ctx.ReaderNotes());
+  const double voxelMl = ct.spacing.prod() / 1000.0;
   ctx.progress.EndStage();
 
   ctx.progress.StartStage("Cleansing", "tagged material to air");
-  cleansing::CleansingResult r = cleansing::Cleanse(ct, p, ctx.progress);
+  cleansing::CleansingResult r = cleansing::Cleanse(std::move(ct), p, ctx.progress);  // in place
   ctx.progress.EndStage();
 
   ctx.progress.StartStage("Writing", "writing the cleansed CT");
@@ -41,7 +42,7 @@ void Run(cli::ModuleContext& ctx) {
 
   std::size_t taggedCount = 0;
   for (unsigned char v : r.tagged.voxels) taggedCount += v;
-  const double ml = double(taggedCount) * ct.spacing.prod() / 1000.0;
+  const double ml = double(taggedCount) * voxelMl;
   ctx.SetReturn("cleansedVoxels", std::to_string(r.taggedVoxels));
   ctx.SetReturn("taggedVolume", cli::FormatFixed(ml, 2));
   if (r.regions == 0) {

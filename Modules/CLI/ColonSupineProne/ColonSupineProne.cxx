@@ -23,6 +23,7 @@
 #include <array>
 #include <chrono>
 #include <filesystem>
+#include <optional>
 #include <regex>
 #include <set>
 #include <tuple>
@@ -57,6 +58,7 @@ const char* const kScans[2] = {"supine", "prone"};
 const char* const kScansStage = "scans: cleansing, segmentation, surface";
 const char* const kLabelMapsStage = "scans: surface";  // --labelMaps: no cleansing, no segmentation
 const char* const kFlatteningStage = "flattening of both scans";
+const char* const kViewsStage = "views: flat and endoluminal";  // the two views modules side by side
 
 struct Options {
   std::string scan[2], out, findings, truth, method, targetFaces, labelValue;
@@ -76,13 +78,17 @@ bool EndoluminalViews(const Options& o) { return !o.findings.empty() && o.views 
 
 // Relative weights of a scan's steps in the host's progress (a block's is its steps' sum).
 constexpr double kCleansingWeight = 2.0, kSegmentationWeight = 5.0, kSurfaceWeight = 9.0, kFlatteningWeight = 1.0;
+constexpr double kFlatViewsWeight = 1.0, kEndoluminalViewsWeight = 2.0;
 
-// One step of a scan's job (RunBoth): a stage record's name, the module, its arguments.
+// One step of a job (RunBoth): a stage record's name, the module, its arguments. An optional
+// step that fails (colonmap::Error, e.g. no X display to render with) does not stop the run: its
+// message is kept (Pipeline::Failures) and the job goes on.
 struct Step {
   std::string name;
   StageModule module;
   std::vector<std::string> args;
   double weight;
+  bool optional = false;
 };
 
 // One run of the pipeline: stage folders (temporary until the end), stage records.
@@ -121,20 +127,21 @@ class Pipeline {
     return results;
   }
 
-  // The two scans' jobs as one stage of the host's progress (issue 22): side by side on two
-  // threads (Core/RunConcurrently.h; the outputs are the same as one after the other, tested),
-  // or, with --sequential, the supine job and then the prone one. Each step keeps its own record
-  // (its wall time and its thread's CPU time); the block's wall and process CPU time are recorded
-  // in `blocks`. Stage folders must exist before (Folder() is not for threads).
-  void RunBoth(const std::string& stage, const std::array<std::vector<Step>, 2>& jobs) {
+  // Two jobs as one stage of the host's progress (issue 22): the two scans' (their notes say
+  // which scan) or the two views modules' (scanJobs false), side by side on two threads
+  // (Core/RunConcurrently.h; the outputs are the same as one after the other, tested), or, with
+  // --sequential, the first job and then the second. Each step keeps its own record (its wall
+  // time and its thread's CPU time); the block's wall and process CPU time are recorded in
+  // `blocks`. Stage folders must exist before (Folder() is not for threads).
+  void RunBoth(const std::string& stage, const std::array<std::vector<Step>, 2>& jobs, bool scanJobs = true) {
     ctx_.progress.StartStage(stage);
     const auto start = std::chrono::steady_clock::now();
     const double cpuStart = cli::ProcessCpuSeconds();
-    const auto records = RunJobs(jobs);
+    const auto records = RunJobs(jobs, scanJobs);
     for (const auto& job : records)
       for (const cli::StepRecord& r : job)
         ctx_.progress.Note("ColonSupineProne: " + r.name + " done in " + cli::FormatFixed(r.seconds, 2) + " s" +
-                           (o_.sideBySide ? " (side by side with the other scan)" : ""));
+                           (o_.sideBySide ? " (side by side with the other job)" : ""));
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const double cpuSeconds = cli::ProcessCpuSeconds() - cpuStart;
     ctx_.progress.EndStage();
@@ -143,16 +150,24 @@ class Pipeline {
 
   // The two jobs, side by side or one after the other, into the current stage's progress; their
   // notes printed (also when one fails); their steps' records.
-  std::array<std::vector<cli::StepRecord>, 2> RunJobs(const std::array<std::vector<Step>, 2>& jobs) {
+  std::array<std::vector<cli::StepRecord>, 2> RunJobs(const std::array<std::vector<Step>, 2>& jobs, bool scanJobs) {
     std::array<std::vector<cli::StepRecord>, 2> records;
     std::array<std::vector<std::string>, 2> notes;
+    std::array<std::vector<std::pair<std::string, std::string>>, 2> failures;
     auto job = [&](int k) {
       return [&, k](ProgressSink& sink) {
         std::vector<std::pair<std::string, double>> plan;
         for (const Step& s : jobs[k]) plan.emplace_back(s.name, s.weight);
         cli::StageChain chain(sink, plan, [this] { return ctx_.progress.AbortRequested(); }, &shelf_);
         try {
-          for (const Step& s : jobs[k]) chain.Run(s.name, s.module.name, s.module.xml, s.module.body, s.args);
+          for (const Step& s : jobs[k]) {
+            try {
+              chain.Run(s.name, s.module.name, s.module.xml, s.module.body, s.args);
+            } catch (const Error& e) {
+              if (!s.optional) throw;
+              failures[k].emplace_back(s.name, ctx_.outputs.UserNames(e.what()));
+            }
+          }
         } catch (...) {
           notes[k] = chain.TakeNotes();
           throw;
@@ -171,13 +186,15 @@ class Pipeline {
         job(1)(second);
       }
     } catch (const Error& e) {
-      PrintNotes(notes);
+      PrintNotes(notes, scanJobs);
       throw Error(ctx_.outputs.UserNames(e.what()));
     } catch (...) {  // Cancel, out of memory: what the finished steps said still counts
-      PrintNotes(notes);
+      PrintNotes(notes, scanJobs);
       throw;
     }
-    PrintNotes(notes);
+    PrintNotes(notes, scanJobs);
+    for (const auto& job : failures)
+      for (const auto& [step, message] : job) failures_[step] = message;
     return records;
   }
 
@@ -196,10 +213,17 @@ class Pipeline {
     total_ += seconds;
   }
 
-  // The jobs' notes, supine first, each line saying its scan (the stages' own notes do not).
-  void PrintNotes(const std::array<std::vector<std::string>, 2>& notes) {
+  // The jobs' notes, the first job's first; for the scans' jobs each line says its scan (the
+  // stages' own notes do not).
+  void PrintNotes(const std::array<std::vector<std::string>, 2>& notes, bool scanJobs) {
     for (int k = 0; k < 2; ++k)
-      for (const auto& line : notes[k]) ctx_.progress.Note(std::string(kScans[k]) + ": " + line);
+      for (const auto& line : notes[k]) ctx_.progress.Note(scanJobs ? std::string(kScans[k]) + ": " + line : line);
+  }
+
+  // The error of an optional step that failed (RunBoth), or nothing.
+  std::optional<std::string> Failure(const std::string& step) const {
+    const auto it = failures_.find(step);
+    return it == failures_.end() ? std::nullopt : std::optional<std::string>(it->second);
   }
 
   // Volumes one stage hands to the next in memory (the files are written all the same).
@@ -216,6 +240,7 @@ class Pipeline {
   std::map<std::string, std::string> folders_;
   json stages_ = json::array();
   json blocks_ = json::array();
+  std::map<std::string, std::string> failures_;  // optional steps that failed: their errors
   VolumeShelf shelf_;
   double total_ = 0.0;  // wall seconds: stages run alone plus blocks
 };
@@ -300,9 +325,9 @@ std::vector<std::pair<std::string, double>> Plan(const Options& o) {
   plan.emplace_back("landmarks", 4.0);
   plan.emplace_back(kFlatteningStage, 2 * kFlatteningWeight);
   plan.emplace_back("registration", 2.0);
-  if (o.views) plan.emplace_back("flat views", 1.0);
   if (!o.findings.empty()) plan.emplace_back("transfer findings", 0.2);
-  if (EndoluminalViews(o)) plan.emplace_back("endoluminal views", 2.0);
+  const double views = (o.views ? kFlatViewsWeight : 0.0) + (EndoluminalViews(o) ? kEndoluminalViewsWeight : 0.0);
+  if (views > 0) plan.emplace_back(kViewsStage, views);
   if (!o.truth.empty()) plan.emplace_back("evaluation", 0.3);
   plan.emplace_back("report", 0.2);
   return plan;
@@ -547,9 +572,6 @@ void Run(cli::ModuleContext& ctx) {
     fs::copy_file(p.In("registration", file), ctx.outputs.Stage((fs::path(o.out) / file).string(), file));
   WriteModelNodes(ctx, p.Folder("registration"));
 
-  if (o.views)
-    p.Run("flat views", COLONMAP_STAGE(ColonFlatViews),
-          {p.In("flattening", "supine"), p.In("flattening", "prone"), p.Folder("registration"), p.Folder("flatviews")});
   json findingsTable = json::array();
   if (!o.findings.empty()) {
     const std::string mapped = p.In("transfer", "findings_prone.mrk.json");
@@ -561,19 +583,27 @@ void Run(cli::ModuleContext& ctx) {
     findingsTable = FindingsTable(io::ReadMarkups(o.findings, "findings"), io::ReadMarkups(mapped, "mapped findings"),
                                   truth.points.empty() ? nullptr : &truth);
     WriteFindingsNodes(ctx, mapped, findingsTable);
-    if (EndoluminalViews(o)) {
-      // Rendering needs an X display; without one the rest of the run still stands.
-      try {
-        p.Run("endoluminal views", COLONMAP_STAGE(ColonEndoluminalViews),
-              {"--supineVolume", volume[0], "--proneVolume", volume[1], "--registration", reg, "--findings",
-               o.findings, p.Folder("views")});
-      } catch (const Error& e) {
-        ctx.progress.EndStage();
-        notes.push_back(std::string("No endoluminal views: ") + e.what());
-        ctx.progress.Note(std::string("ColonSupineProne: WARNING: no endoluminal views: ") + e.what());
-      }
-    } else if (o.labelMaps) {
-      notes.push_back("No endoluminal views: the inputs are label maps, there is no CT to render.");
+    if (o.labelMaps) notes.push_back("No endoluminal views: the inputs are label maps, there is no CT to render.");
+  }
+  // The flat views and the endoluminal views side by side (each renders in its own VTK window on
+  // its own X connection). Rendering needs an X display: without one the flat views leave out
+  // their 3D pictures and the endoluminal views fail, and the rest of the run still stands.
+  std::array<std::vector<Step>, 2> viewJobs;
+  if (o.views)
+    viewJobs[0].push_back({"flat views", COLONMAP_STAGE(ColonFlatViews),
+                           {p.In("flattening", "supine"), p.In("flattening", "prone"), p.Folder("registration"),
+                            p.Folder("flatviews")},
+                           kFlatViewsWeight});
+  if (EndoluminalViews(o))
+    viewJobs[1].push_back({"endoluminal views", COLONMAP_STAGE(ColonEndoluminalViews),
+                           {"--supineVolume", volume[0], "--proneVolume", volume[1], "--registration", reg, "--findings",
+                            o.findings, p.Folder("views")},
+                           kEndoluminalViewsWeight, /*optional=*/true});
+  if (!viewJobs[0].empty() || !viewJobs[1].empty()) {
+    p.RunBoth(kViewsStage, viewJobs, /*scanJobs=*/false);
+    if (const auto failure = p.Failure("endoluminal views")) {
+      notes.push_back("No endoluminal views: " + *failure);
+      ctx.progress.Note("ColonSupineProne: WARNING: no endoluminal views: " + *failure);
     }
   }
   if (!o.truth.empty()) {

@@ -12,6 +12,7 @@ import math
 import os
 import re
 import shutil
+import subprocess
 import sys
 import tempfile
 
@@ -58,8 +59,8 @@ for stage in ("cleansing supine", "segmentation prone", "surface supine", "landm
 t.check(all(s["seconds"] > 0 for s in summary.get("stages", [])), "every stage has a time")
 # CPU during each stage (issue 22). A stage run alone: the whole process's, positive and at most
 # what the machine's cores could give in that wall time (a little slack for the clocks'
-# granularity). A stage of one scan's job, run side by side with the other scan's: its own
-# thread's, and its block (both scans' jobs) has the process's.
+# granularity). A stage of a job run side by side with another (the two scans', the two views
+# modules'): its own thread's, and its block has the process's.
 cores = os.cpu_count() or 1
 stages = summary.get("stages", [])
 blocks = {b["name"]: b for b in summary.get("stageBlocks", [])}
@@ -68,8 +69,10 @@ t.check(all(0 < s.get("cpuSeconds", 0) <= cores * s["seconds"] + 0.05 for s in a
         "every stage run alone has its CPU seconds, within cores x wall")
 t.check(all(s["block"] in blocks and 0 < s.get("threadCpuSeconds", 0) <= s["seconds"] + 0.05
             for s in stages if "block" in s), "every stage of a scan's job has its thread's CPU seconds")
-t.check(len(blocks) == 2 and all(b.get("sideBySide") is True and 0 < b["cpuSeconds"] <= cores * b["seconds"] + 0.05
-                                 for b in blocks.values()), "two blocks of both scans' jobs, run side by side")
+t.check(len(blocks) == 3 and all(b.get("sideBySide") is True and 0 < b["cpuSeconds"] <= cores * b["seconds"] + 0.05
+                                 for b in blocks.values()), "three blocks (scans, flattenings, views), run side by side")
+views = blocks.get("views: flat and endoluminal", {})
+t.check(views.get("stages") == ["flat views", "endoluminal views"], f"the views block: {views.get('stages')}")
 t.check(sorted(n for b in blocks.values() for n in b["stages"]) == sorted(s["name"] for s in stages if "block" in s),
         "each block lists its stages")
 # Side by side, a block takes less than its stages one after the other (both cores at work).
@@ -127,7 +130,25 @@ differ = [f for f in files(out) if f not in timed and os.path.exists(os.path.joi
           and open(os.path.join(out, f), "rb").read() != open(os.path.join(outSeq, f), "rb").read()]
 t.check(len(files(out)) > 40 and not differ, f"every output byte-identical ({len(files(out))} files; differ: {differ})")
 sSeq = json.load(open(os.path.join(outSeq, "summary.json"))) if os.path.exists(os.path.join(outSeq, "summary.json")) else {}
-t.check([b.get("sideBySide") for b in sSeq.get("stageBlocks", [])] == [False, False], "--sequential is recorded")
+t.check([b.get("sideBySide") for b in sSeq.get("stageBlocks", [])] == [False] * 3, "--sequential is recorded")
+
+# 1c. No X display: the endoluminal views cannot render, the run stands and says why; the flat
+# views are written without their 3D pictures.
+outNoX = os.path.join(work, "out-no-display")
+env = dict(os.environ)
+env.pop("DISPLAY", None)
+rn = subprocess.run([exe, "--supine", os.path.join(phantom, "supine.nrrd"), "--prone", os.path.join(phantom, "prone.nrrd"),
+                     "--outputDirectory", outNoX, "--targetFaces", "40000", "--findings",
+                     os.path.join(phantom, "supine_polyps.mrk.json")], capture_output=True, text=True,
+                    stdin=subprocess.DEVNULL, env=env)
+t.check(rn.returncode == 0, f"run without a display: exit {rn.returncode}: {rn.stderr.strip()[:300]}")
+sNoX = json.load(open(os.path.join(outNoX, "summary.json"))) if os.path.exists(os.path.join(outNoX, "summary.json")) else {}
+t.check(any(n.startswith("No endoluminal views:") and "display" in n for n in sNoX.get("notes", [])),
+        f"without a display the notes say why there are no endoluminal views: {sNoX.get('notes')}")
+t.check("endoluminal views" not in [s["name"] for s in sNoX.get("stages", [])] and
+        "flat views" in [s["name"] for s in sNoX.get("stages", [])], "flat views made, no endoluminal views stage")
+t.check(os.path.isfile(os.path.join(outNoX, "flatviews", "flat_pair_registered.png")) and
+        not os.path.exists(os.path.join(outNoX, "flatviews", "distortion_3d.png")), "flat pictures without the 3D ones")
 
 # 2. More findings through OUT/registration.vtp, as the README tells users to do.
 mapped = os.path.join(work, "mapped.mrk.json")
