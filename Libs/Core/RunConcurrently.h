@@ -1,6 +1,7 @@
 #pragma once
-// Two independent jobs at once (the supine and the prone scan's work), with one progress and
-// prompt cancellation. The host's sink is only ever called from the calling thread: the second
+// Two independent jobs at once (the supine and the prone scan's work; the flat and the
+// endoluminal views), with one progress and prompt cancellation. The host's sink is only ever
+// called from the calling thread: the second
 // job runs on a worker thread whose progress is stored atomically and forwarded (with the first
 // job's, as their mean) by the caller, which also polls while it waits. When the host cancels,
 // the worker is asked to stop at its next Report(), both are joined, and Cancelled propagates.

@@ -54,13 +54,21 @@ class VolumeShelf {
     const std::shared_ptr<Kept> kept = TakeShared(path);
     if (!kept) return std::nullopt;
     if (auto* same = std::get_if<Volume<T>>(kept.get()); same && kept.use_count() == 1) {
-      // The last read, and no other Take still copies it: move it out. The fence orders that
-      // copier's reads (its reference's release) before our writes.
+      // The last read, and no other Take still copies it nor a sharer holds it (their pointers
+      // count too): move it out. The fence orders that copier's reads (its reference's release)
+      // before our writes.
       std::atomic_thread_fence(std::memory_order_acquire);
       return std::move(*same);
     }
     return std::visit([&](const auto& volume) { return MapVoxels<T>(volume, [](auto v) { return static_cast<T>(v); }, progress); },
                       *kept);
+  }
+
+  // Lets go of what is kept for `path`, read or not (a stage expected to read it did not run):
+  // sharers keep theirs.
+  void Drop(const std::string& path) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    entries_.erase(path);
   }
 
   // The volume kept for `path`, to read only, or null: the kept volume itself when it is kept

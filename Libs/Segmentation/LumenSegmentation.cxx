@@ -28,7 +28,8 @@ std::string Fixed(double value, int decimals) {
 // Volumes read best with the decimals their size needs.
 std::string Ml(double ml) { return Fixed(ml, ml < 10.0 ? 1 : 0) + " ml"; }
 
-// One component's padded bounding box as its own grid, for the per-component ITK filters.
+// One component's padded bounding box as its own grid, for the per-component filters (cavities,
+// ITK's distance map).
 struct Crop {
   std::array<std::size_t, 3> first{{0, 0, 0}};  // image index of crop voxel (1, 1, 1)
   Volume<unsigned char> mask;                   // the component (1), padded by one zero voxel

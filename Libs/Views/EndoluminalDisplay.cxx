@@ -6,10 +6,16 @@
 
 #include <chrono>
 #include <cstdlib>
+#include <mutex>
 #include <string>
 #include <thread>
 
 namespace colonmap::views {
+
+std::mutex& RenderWindowSetupMutex() {
+  static std::mutex mutex;
+  return mutex;
+}
 
 void* OpenRenderDisplay(std::string* why) {
   const char* name = std::getenv("DISPLAY");
@@ -21,7 +27,10 @@ void* OpenRenderDisplay(std::string* why) {
   // opens failed), and VTK aborts the process when its own open fails: retry here, then hand
   // the connection to VTK.
   for (int attempt = 0; attempt < 40; ++attempt) {
-    if (Display* display = XOpenDisplay(nullptr)) return display;
+    {
+      const std::lock_guard<std::mutex> lock(RenderWindowSetupMutex());  // Xlib's globals
+      if (Display* display = XOpenDisplay(nullptr)) return display;
+    }
     std::this_thread::sleep_for(std::chrono::milliseconds(25));
   }
   if (why) *why = std::string("cannot open the X display '") + name + "'";
@@ -29,7 +38,9 @@ void* OpenRenderDisplay(std::string* why) {
 }
 
 void CloseRenderDisplay(void* display) {
-  if (display) XCloseDisplay(static_cast<Display*>(display));
+  if (!display) return;
+  const std::lock_guard<std::mutex> lock(RenderWindowSetupMutex());
+  XCloseDisplay(static_cast<Display*>(display));
 }
 
 void* OpenRenderDisplayOrThrow(const std::string& what) {

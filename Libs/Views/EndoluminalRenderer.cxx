@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <cstring>
 
 namespace colonmap::views {
@@ -90,10 +91,14 @@ EndoluminalRenderer::EndoluminalRenderer(const EndoluminalRenderOptions& options
   m.window->SetSize(options_.width, options_.height);
   m.window->SetMultiSamples(0);
   m.window->AddRenderer(m.renderer);
+  const std::lock_guard<std::mutex> lock(RenderWindowSetupMutex());
+  m.window->Start();  // the X window and its context, now and not at the first Render()
 }
 
 EndoluminalRenderer::~EndoluminalRenderer() {
-  if (impl_) impl_->window->Finalize();
+  if (!impl_) return;
+  const std::lock_guard<std::mutex> lock(RenderWindowSetupMutex());
+  impl_->window->Finalize();
 }
 
 RgbImage EndoluminalRenderer::Render(const Volume<short>& ct, const CameraPose& camera, const std::string& what) {

@@ -17,6 +17,7 @@
 #include "Views/VolumeRenderPreset.h"
 
 #include <memory>
+#include <mutex>
 #include <string>
 
 namespace colonmap::views {
@@ -37,6 +38,12 @@ void* OpenRenderDisplay(std::string* why);
 void CloseRenderDisplay(void* display);
 // The same, throwing colonmap::Error "<what>: <why>; ..." when there is no display.
 void* OpenRenderDisplayOrThrow(const std::string& what);
+
+// Held while a render window is set up (its X window and OpenGL context) or torn down: VTK's X
+// window creation swaps the process's Xlib error handler and tries context versions with a
+// shared flag, so two threads doing it at once could exit the process on a driver that refuses
+// the first version (ColonSupineProne renders the flat and the endoluminal views side by side).
+std::mutex& RenderWindowSetupMutex();
 
 // Owns one such connection (declare it before the render window, so it outlives it).
 struct RenderDisplay {

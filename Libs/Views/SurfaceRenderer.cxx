@@ -66,10 +66,14 @@ SurfaceRenderer::SurfaceRenderer(const SurfaceRenderOptions& options) : options_
   m.window->SetSize(options_.width, options_.height);
   m.window->SetMultiSamples(0);
   m.window->AddRenderer(m.renderer);
+  const std::lock_guard<std::mutex> lock(RenderWindowSetupMutex());
+  m.window->Start();  // the X window and its context, now and not at the first Render()
 }
 
 SurfaceRenderer::~SurfaceRenderer() {
-  if (impl_) impl_->window->Finalize();
+  if (!impl_) return;
+  const std::lock_guard<std::mutex> lock(RenderWindowSetupMutex());
+  impl_->window->Finalize();
 }
 
 ColourImage SurfaceRenderer::Render(const SurfaceScene& scene, const SurfaceCamera& camera) {

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 using namespace colonmap;
@@ -157,6 +158,20 @@ TEST(TopologyGrowth, OurCavityFillingIsItksOnNoise) {
     EXPECT_GT(CountSet(ours), CountSet(m)) << "seed " << seed;  // there were cavities to fill
     EXPECT_LT(CountSet(ours), ours.voxels.size()) << "seed " << seed;  // and background that reaches out
   }
+  // Thin grids (every voxel on the border), all foreground, all background.
+  int k = 0;
+  for (const std::array<std::size_t, 3>& size : {std::array<std::size_t, 3>{1, 7, 5}, {6, 2, 4}, {5, 6, 1}, {3, 3, 3}})
+    for (double density : {0.0, 0.5, 1.0}) {
+      Volume<unsigned char> m = Shape(size[0], size[1], size[2], [&](double i, double j, double l) {
+        return phantom::HashToUnit(phantom::Hash(++k, std::uint64_t(i + 100 * j + 10000 * l))) < density;
+      });
+      Volume<unsigned char> ours = m, itk = m;
+      detail::FillCavities6(GridOf(ours), ours.voxels, none);
+      detail::ItkFillCavities6(GridOf(itk), itk.voxels, none);
+      EXPECT_EQ(ours.voxels, itk.voxels) << size[0] << "x" << size[1] << "x" << size[2] << " density " << density;
+      if (std::min({size[0], size[1], size[2]}) <= 2 || density != 0.5)
+        EXPECT_EQ(ours.voxels, m.voxels) << "no cavity in a grid this thin or uniform";
+    }
 }
 
 TEST(TopologyGrowth, ComponentRunsOfACtAreTheLabelsOfItsThresholdedMask) {

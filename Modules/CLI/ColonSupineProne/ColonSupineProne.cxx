@@ -54,7 +54,7 @@ struct StageModule {
   StageModule { #Name, colonmap::modules::Name##XML, &colonmap::modules::Run##Name }
 
 const char* const kScans[2] = {"supine", "prone"};
-// The host's progress stages that run both scans' jobs (Pipeline::RunBoth).
+// The host's progress stages that run two jobs side by side (Pipeline::RunBoth).
 const char* const kScansStage = "scans: cleansing, segmentation, surface";
 const char* const kLabelMapsStage = "scans: surface";  // --labelMaps: no cleansing, no segmentation
 const char* const kFlatteningStage = "flattening of both scans";
@@ -82,7 +82,7 @@ constexpr double kFlatViewsWeight = 1.0, kEndoluminalViewsWeight = 2.0;
 
 // One step of a job (RunBoth): a stage record's name, the module, its arguments. An optional
 // step that fails (colonmap::Error, e.g. no X display to render with) does not stop the run: its
-// message is kept (Pipeline::Failures) and the job goes on.
+// message is kept (Pipeline::Failure) and the job goes on.
 struct Step {
   std::string name;
   StageModule module;
@@ -92,6 +92,24 @@ struct Step {
 };
 
 // One run of the pipeline: stage folders (temporary until the end), stage records.
+// The run's wall seconds from its records: the stages run alone plus the blocks of jobs side by
+// side (a stage of a block the records do not give counts on its own). The whole run and
+// --reportOnly both count with this, so their summaries agree to the last bit.
+double WallSeconds(const json& stages, const json& blocks) {
+  double total = 0.0;
+  std::set<std::string> blockNames;
+  for (const auto& b : blocks)
+    if (b.is_object() && b.value("seconds", json()).is_number()) {
+      total += b["seconds"].get<double>();
+      blockNames.insert(b.value("name", std::string()));
+    }
+  for (const auto& s : stages)
+    if (s.is_object() && s.value("seconds", json()).is_number() &&
+        !(s.contains("block") && s["block"].is_string() && blockNames.count(s["block"].get<std::string>())))
+      total += s["seconds"].get<double>();
+  return total;
+}
+
 class Pipeline {
  public:
   Pipeline(cli::ModuleContext& ctx, const Options& o) : ctx_(ctx), o_(o) {}
@@ -123,7 +141,6 @@ class Pipeline {
     ctx_.progress.EndStage();
     stages_.push_back({{"name", stage}, {"module", m.name}, {"seconds", seconds}, {"cpuSeconds", cpuSeconds},
                        {"results", ResultsJson(results)}});
-    total_ += seconds;
     return results;
   }
 
@@ -165,7 +182,7 @@ class Pipeline {
               chain.Run(s.name, s.module.name, s.module.xml, s.module.body, s.args);
             } catch (const Error& e) {
               if (!s.optional) throw;
-              failures[k].emplace_back(s.name, ctx_.outputs.UserNames(e.what()));
+              failures[k].emplace_back(s.name, e.what());
             }
           }
         } catch (...) {
@@ -194,7 +211,7 @@ class Pipeline {
     }
     PrintNotes(notes, scanJobs);
     for (const auto& job : failures)
-      for (const auto& [step, message] : job) failures_[step] = message;
+      for (const auto& [step, message] : job) failures_[step] = ctx_.outputs.UserNames(message);
     return records;
   }
 
@@ -210,7 +227,6 @@ class Pipeline {
       }
     blocks_.push_back({{"name", stage}, {"stages", names}, {"sideBySide", o_.sideBySide}, {"seconds", seconds},
                        {"cpuSeconds", cpuSeconds}});
-    total_ += seconds;
   }
 
   // The jobs' notes, the first job's first; for the scans' jobs each line says its scan (the
@@ -232,7 +248,7 @@ class Pipeline {
   const std::map<std::string, std::string>& Folders() const { return folders_; }
   const json& Stages() const { return stages_; }
   const json& Blocks() const { return blocks_; }
-  double TotalSeconds() const { return total_; }
+  double TotalSeconds() const { return WallSeconds(stages_, blocks_); }
 
  private:
   cli::ModuleContext& ctx_;
@@ -242,7 +258,6 @@ class Pipeline {
   json blocks_ = json::array();
   std::map<std::string, std::string> failures_;  // optional steps that failed: their errors
   VolumeShelf shelf_;
-  double total_ = 0.0;  // wall seconds: stages run alone plus blocks
 };
 
 std::string DescriptionField(const std::string& description, const std::string& key) {
@@ -441,19 +456,7 @@ void BuildReportOnly(cli::ModuleContext& ctx, const Options& o, const std::strin
     if (records.value("notes", json()).is_array()) notes = records["notes"];
     if (records.value("stageBlocks", json()).is_array()) blocks = records["stageBlocks"];
   }
-  // As the whole run counts it: the stages run alone plus the blocks of both scans' jobs; a
-  // stage of a block the records do not give counts on its own.
-  double totalSeconds = 0.0;
-  std::set<std::string> blockNames;
-  for (const auto& b : blocks)
-    if (b.is_object() && b.value("seconds", json()).is_number()) {
-      totalSeconds += b["seconds"].get<double>();
-      blockNames.insert(b.value("name", std::string()));
-    }
-  for (const auto& s : stages)
-    if (s.is_object() && s.value("seconds", json()).is_number() &&
-        !(s.contains("block") && s["block"].is_string() && blockNames.count(s["block"].get<std::string>())))
-      totalSeconds += s["seconds"].get<double>();
+  const double totalSeconds = WallSeconds(stages, blocks);
   json findingsTable = json::array();
   if (!o.findings.empty()) {
     const fs::path mapped = out / "transfer" / "findings_prone.mrk.json";
@@ -601,6 +604,8 @@ void Run(cli::ModuleContext& ctx) {
                            kEndoluminalViewsWeight, /*optional=*/true});
   if (!viewJobs[0].empty() || !viewJobs[1].empty()) {
     p.RunBoth(kViewsStage, viewJobs, /*scanJobs=*/false);
+    // Read or not (no display), the cleansed CTs are not needed any more.
+    for (const std::string& v : volume) p.Shelf().Drop(v);
     if (const auto failure = p.Failure("endoluminal views")) {
       notes.push_back("No endoluminal views: " + *failure);
       ctx.progress.Note("ColonSupineProne: WARNING: no endoluminal views: " + *failure);
