@@ -2,10 +2,11 @@
 
 #include "Core/Error.h"
 #include "Views/RenderWindowGrab.h"
+#include "Views/StoppableRayCastMapper.h"
 
 #include <vtkCamera.h>
 #include <vtkColorTransferFunction.h>
-#include <vtkFixedPointVolumeRayCastMapper.h>
+#include <vtkCommand.h>
 #include <vtkImageData.h>
 #include <vtkLight.h>
 #include <vtkNew.h>
@@ -20,8 +21,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <mutex>
 #include <cstring>
+#include <exception>
+#include <mutex>
 
 namespace colonmap::views {
 
@@ -29,13 +31,37 @@ struct EndoluminalRenderer::Impl {
   RenderDisplay display;  // first: outlives the window that uses it
   vtkNew<vtkRenderWindow> window;
   vtkNew<vtkRenderer> renderer;
-  vtkNew<vtkFixedPointVolumeRayCastMapper> mapper;
+  vtkNew<StoppableRayCastMapper> mapper;
   vtkNew<vtkVolume> volume;
   vtkNew<vtkVolumeProperty> property;
   vtkNew<vtkPiecewiseFunction> opacity;
   vtkNew<vtkColorTransferFunction> colour;
   vtkNew<vtkLight> light;
   vtkNew<vtkLight> ring[4];
+
+  // The picture being rendered: its progress, how far it got, and what stopped it (Cancelled or
+  // another error of the sink, rethrown once VTK has returned: nothing is thrown through VTK).
+  ProgressSink* progress = nullptr;
+  double reported = 0.0;
+  std::exception_ptr stopped;
+
+  // Called by VTK on the rendering thread: from the gradient pass (every 8 slices of its first
+  // thread) and from the ray casting's abort checks (at most every 0.2 s).
+  void Poll(double fraction) {
+    if (!progress || stopped) return;
+    reported = std::max(reported, fraction);
+    try {
+      progress->Report(reported);
+    } catch (...) {
+      stopped = std::current_exception();
+      mapper->Stop();             // the rest of the gradient pass: nothing to compute
+      window->SetAbortRender(1);  // the ray casting: ends at its next row
+    }
+  }
+  void OnGradients(vtkObject*, unsigned long, void* data) {
+    Poll(0.8 * std::clamp(data ? *static_cast<double*>(data) : 0.0, 0.0, 1.0));
+  }
+  void OnAbortCheck(vtkObject*, unsigned long, void*) { Poll(0.9); }
 };
 
 EndoluminalRenderer::EndoluminalRenderer(const EndoluminalRenderOptions& options) : options_(options) {
@@ -91,6 +117,8 @@ EndoluminalRenderer::EndoluminalRenderer(const EndoluminalRenderOptions& options
   m.window->SetSize(options_.width, options_.height);
   m.window->SetMultiSamples(0);
   m.window->AddRenderer(m.renderer);
+  m.mapper->AddObserver(vtkCommand::VolumeMapperComputeGradientsProgressEvent, &m, &Impl::OnGradients);
+  m.window->AddObserver(vtkCommand::AbortCheckEvent, &m, &Impl::OnAbortCheck);
   const std::lock_guard<std::mutex> lock(RenderWindowSetupMutex());
   m.window->Start();  // the X window and its context, now and not at the first Render()
 }
@@ -101,7 +129,8 @@ EndoluminalRenderer::~EndoluminalRenderer() {
   impl_->window->Finalize();
 }
 
-RgbImage EndoluminalRenderer::Render(const Volume<short>& ct, const CameraPose& camera, const std::string& what) {
+RgbImage EndoluminalRenderer::Render(const Volume<short>& ct, const CameraPose& camera, const std::string& what,
+                                     ProgressSink* progress) {
   Impl& m = *impl_;
   if (ct.NumberOfVoxels() == 0) throw Error(what + ": empty image");
   const Eigen::Vector3d ci = ct.PhysicalToIndex(camera.position);
@@ -148,7 +177,17 @@ RgbImage EndoluminalRenderer::Render(const Volume<short>& ct, const CameraPose& 
   cam->SetViewAngle(options_.viewAngleDeg);
   cam->ParallelProjectionOff();
   cam->SetClippingRange(std::max(0.05, 0.25 * ct.spacing.minCoeff()), 4.0 * options_.cropRadiusMm);
+  m.progress = progress;
+  m.reported = 0.0;
   m.window->Render();
+  m.progress = nullptr;
+  if (m.stopped) {  // the picture is unfinished: drop it, and be ready for the next one
+    const std::exception_ptr stopped = m.stopped;
+    m.stopped = nullptr;
+    m.mapper->Rearm();
+    m.mapper->RemoveAllInputs();
+    std::rethrow_exception(stopped);
+  }
 
   const std::vector<unsigned char> rgb = GrabRgbTopRowFirst(m.window, options_.width, options_.height, what);
   RgbImage out;

@@ -11,6 +11,7 @@
 // Needs an X display (Debian's VTK 9.1 renders through GLX only: no EGL/OSMesa window): run
 // under `xvfb-run -a`. Without one the constructor throws colonmap::Error (VTK itself would
 // abort the process). VTK headers only in the .cxx.
+#include "Core/Cancel.h"
 #include "Core/Volume.h"
 #include "Views/CameraPose.h"
 #include "Views/EndoluminalImage.h"
@@ -63,8 +64,11 @@ class EndoluminalRenderer {
   EndoluminalRenderer& operator=(const EndoluminalRenderer&) = delete;
 
   // One view of `ct` (HU) from `camera` (LPS mm). Throws colonmap::Error (naming `what`) when the
-  // camera lies outside the CT.
-  RgbImage Render(const Volume<short>& ct, const CameraPose& camera, const std::string& what);
+  // camera lies outside the CT. `progress` (optional) is this picture's: it hears from inside
+  // the rendering (the gradient pass, then the ray casting, some 20-50 ms apart at clinical
+  // size), and a Cancelled it throws stops the picture there and leaves Render as Cancelled.
+  RgbImage Render(const Volume<short>& ct, const CameraPose& camera, const std::string& what,
+                  ProgressSink* progress = nullptr);
 
   const EndoluminalRenderOptions& Options() const { return options_; }
 

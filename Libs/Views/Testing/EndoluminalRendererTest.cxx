@@ -2,16 +2,22 @@
 // soft tissue with a tissue bump on one side. Looking down the tube the centre is dark (far,
 // open) and the rim bright (near wall); looking at the wall the centre is bright; the bump shows
 // on the side it is on, also when the same physical CT is stored with flipped or left-handed
-// axes (direction cosines honoured); renders are byte-identical when repeated.
+// axes (direction cosines honoured); renders are byte-identical when repeated; a Cancel heard
+// while a picture renders stops it part way.
 #include "Views/EndoluminalRenderer.h"
 
+#include "Core/Cancel.h"
 #include "Core/Error.h"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <functional>
+#include <iostream>
 #include <vector>
 
 using namespace colonmap;
@@ -27,19 +33,42 @@ short Hu(const Eigen::Vector3d& p) {
   return air ? -1000 : 40;
 }
 
-// A 64 mm cube (1 mm voxels) centred on the tube axis, stored with the given direction matrix.
-Volume<short> Phantom(const Eigen::Matrix3d& direction) {
+// A 64 mm cube (voxels of `spacing` mm) centred on the tube axis, stored with the given direction
+// matrix; with `noise`, up to that many HU of fixed pseudo-random noise, as a CT has (every voxel
+// then has a gradient direction for VTK to encode).
+Volume<short> Phantom(const Eigen::Matrix3d& direction, double spacing = 1.0, int noise = 0) {
+  const std::size_t n = static_cast<std::size_t>(std::lround(64 / spacing));
   Volume<short> v;
-  v.size = {64, 64, 64};
-  v.spacing = Eigen::Vector3d(1, 1, 1);
+  v.size = {n, n, n};
+  v.spacing = Eigen::Vector3d::Constant(spacing);
   v.direction = direction;
-  // Choose the origin so that the index box covers [-32, 31] on each physical axis.
-  v.origin = -direction * Eigen::Vector3d(31.5, 31.5, 31.5) + Eigen::Vector3d(0, 0, 32);
+  // Choose the origin so that the index box covers [-32, 32) on each physical axis.
+  v.origin = -direction * Eigen::Vector3d::Constant(0.5 * (n - 1) * spacing) + Eigen::Vector3d(0, 0, 32);
   v.Allocate();
-  for (std::size_t k = 0; k < 64; ++k)
-    for (std::size_t j = 0; j < 64; ++j)
-      for (std::size_t i = 0; i < 64; ++i) v.At(i, j, k) = Hu(v.IndexToPhysical(Eigen::Vector3d(i, j, k)));
+  for (std::size_t k = 0; k < n; ++k)
+    for (std::size_t j = 0; j < n; ++j)
+      for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t hash = (i * 73856093u) ^ (j * 19349663u) ^ (k * 83492791u);
+        const int jitter = noise ? static_cast<int>(hash % (2 * noise + 1)) - noise : 0;
+        v.At(i, j, k) = static_cast<short>(Hu(v.IndexToPhysical(Eigen::Vector3d(i, j, k))) + jitter);
+      }
   return v;
+}
+
+// Hears a picture's progress; throws Cancelled at the cancelAt-th report (0: never).
+struct ListeningSink : ProgressSink {
+  int cancelAt = 0;
+  std::vector<double> heard;
+  void Report(double fraction) override {
+    heard.push_back(fraction);
+    if (static_cast<int>(heard.size()) == cancelAt) throw Cancelled();
+  }
+};
+
+double SecondsOf(const std::function<void()>& f) {
+  const auto start = std::chrono::steady_clock::now();
+  f();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 double Mean(const RgbImage& im, int x0, int y0, int x1, int y1) {
@@ -117,4 +146,35 @@ TEST(EndoluminalRenderer, CameraOutsideTheImageAndBadOptions) {
   bad = Small();
   bad.viewAngleDeg = 200;
   EXPECT_THROW(EndoluminalRenderer{bad}, Error);
+}
+
+// VTK computes the gradients of the whole crop before it casts a ray, with no abort check of its
+// own: the picture's progress is heard from inside that pass, and a Cancel there skips the rest
+// of the picture, which is thrown away; the renderer's next picture is whole.
+TEST(EndoluminalRenderer, HearsCancelWhileRenderingAndThenRendersWhole) {
+  EndoluminalRenderOptions o = Small();
+  o.width = o.height = 256;
+  const Volume<short> ct = Phantom(Eigen::Matrix3d::Identity(), 0.4, 20);  // 160^3 voxels
+  const CameraPose cam = Looking({0, 0, 10}, {0, 0, 1}, {0, 1, 0});
+  EndoluminalRenderer r(o);
+  const RgbImage ref = r.Render(ct, cam, "tube");
+  ListeningSink whole;
+  RgbImage same;
+  const double wholeSeconds = SecondsOf([&] { same = r.Render(ct, cam, "tube", &whole); });
+  EXPECT_TRUE(same.rgb == ref.rgb) << "listening changed the picture";
+  ASSERT_GE(whole.heard.size(), 4u) << "progress from inside the picture";
+  EXPECT_TRUE(std::is_sorted(whole.heard.begin(), whole.heard.end()));
+  EXPECT_GE(whole.heard.front(), 0.0);
+  EXPECT_LE(whole.heard.back(), 1.0);
+
+  ListeningSink cancelling;
+  cancelling.cancelAt = 1;
+  const double cancelledSeconds = SecondsOf([&] { EXPECT_THROW(r.Render(ct, cam, "tube", &cancelling), Cancelled); });
+  EXPECT_EQ(cancelling.heard.size(), 1u) << "heard more after the Cancel";
+  EXPECT_LT(cancelledSeconds, 0.5 * wholeSeconds) << "the rest of the picture was not skipped (whole picture "
+                                                  << wholeSeconds << " s, cancelled " << cancelledSeconds << " s)";
+  std::cout << "whole picture " << wholeSeconds << " s (" << whole.heard.size() << " reports), cancelled at the first "
+            << cancelledSeconds << " s\n";
+  const RgbImage after = r.Render(ct, cam, "tube");
+  EXPECT_TRUE(after.rgb == ref.rgb) << "the picture after a Cancel is not whole";
 }
