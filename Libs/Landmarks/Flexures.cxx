@@ -3,6 +3,7 @@
 #include "Core/Error.h"
 
 #include <algorithm>
+#include <vector>
 #include <cmath>
 #include <sstream>
 
@@ -112,10 +113,20 @@ Flexures FindFlexures(const Eigen::MatrixXd& P, const Eigen::VectorXd& arc, cons
   if (trough < 0) fail("no end of the descending colon below the splenic flexure");
   const double lowest = z(trough) + o.descendingLowerFraction * (z(sf) - z(trough));
   const double norm = std::hypot(1.0, o.sigmoidMedialWeight);
+  // The descending colon's own slope: the median vertical part of travel above the lowest part.
+  std::vector<double> slopes;
+  for (int i = sf; i > trough; --i)
+    if (z(i) > lowest) slopes.push_back(travel(i)(2));
+  double plunge = -1.0;
+  if (!slopes.empty()) {
+    std::nth_element(slopes.begin(), slopes.begin() + slopes.size() / 2, slopes.end());
+    plunge = o.sigmoidSlowing * std::min(0.0, slopes[slopes.size() / 2]);
+  }
   int dsj = trough;
   for (int i = sf; i > trough; --i) {
     if (z(i) > lowest) continue;
     const Eigen::RowVector3d t = travel(i);
+    if (t(2) < plunge) continue;  // descending as steeply as above: the descending colon, turned forward
     if ((-t(1) - o.sigmoidMedialWeight * t(0)) / norm > o.sigmoidTurn) {
       dsj = i;
       break;

@@ -18,7 +18,10 @@
 //         descendingLowerFraction of that descent, the first point where the colon turns
 //         anterior and medial (the sigmoid runs forward and to the midline on its mesocolon;
 //         unit direction of travel t over +-turnTangentMm: (-t_y - sigmoidMedialWeight t_x) /
-//         |(1, sigmoidMedialWeight)| above sigmoidTurn), else the trough itself;
+//         |(1, sigmoidMedialWeight)| above sigmoidTurn, where it descends at most sigmoidSlowing
+//         times as steeply as the descending colon above (median vertical part of travel): a
+//         descending colon that turns forward as it plunges on is still the descending colon,
+//         as on the HuBMAP male colon), else the trough itself;
 //   RSJ = going up the rectum from its most vertical point (within rectumSearchMm of the anal
 //         end; the anal canal leans), the first point where the
 //         direction leaves +z by more than the exit angle (before the DSJ).
@@ -45,6 +48,7 @@ struct FlexureOptions {
   double descendingLowerFraction = 0.25;  // DSJ: searched in this lowest part of the descent
   double sigmoidTurn = 0.5;           // DSJ: anterior-medial component of travel above this
   double sigmoidMedialWeight = 0.5;   // weight of the medial (-x) part in that component
+  double sigmoidSlowing = 0.8;        // DSJ: the turn counts only where the descent is this much slower
   double rectumExitDeg = 45.0;   // turn away from the vertical that ends the rectum
   double minRectumMm = 40.0;     // where the RSJ walk starts when no vertical stretch is found
   double rectumSearchMm = 100.0;  // the RSJ walk starts at the most vertical point this near the anus

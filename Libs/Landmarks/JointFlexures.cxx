@@ -23,8 +23,13 @@ std::vector<Option> OptionsFor(int k, const FlexureCandidates& a, const FlexureC
   std::vector<Option> out;
   for (const FlexureCandidate& ca : a.flexure[k])
     for (const FlexureCandidate& cb : b.flexure[k])
-      if (ca.bridged == cb.bridged && std::fabs(m.AToB(ca.arc) - cb.arc) <= o.agreeMm)
-        out.push_back({ca.arc, cb.arc, ca.share + cb.share, ca.isDefault && cb.isDefault ? "agreed" : "rechosen"});
+      if (ca.bridged == cb.bridged && std::fabs(m.AToB(ca.arc) - cb.arc) <= o.agreeMm) {
+        // Two places that agree within agreeMm are still up to agreeMm apart: the same anatomy
+        // is halfway between them (each scan's place and the other's carried over, averaged).
+        const double arcA = o.meetHalfway ? 0.5 * (ca.arc + m.BToA(cb.arc)) : ca.arc;
+        const double arcB = o.meetHalfway ? 0.5 * (cb.arc + m.AToB(ca.arc)) : cb.arc;
+        out.push_back({arcA, arcB, ca.share + cb.share, ca.isDefault && cb.isDefault ? "agreed" : "rechosen"});
+      }
   for (const FlexureCandidate& ca : a.flexure[k]) out.push_back({ca.arc, m.AToB(ca.arc), worth(ca), "carried from " + names[0]});
   for (const FlexureCandidate& cb : b.flexure[k]) out.push_back({m.BToA(cb.arc), cb.arc, worth(cb), "carried from " + names[1]});
   std::stable_sort(out.begin(), out.end(), [](const Option& x, const Option& y) { return x.worth > y.worth; });

@@ -22,6 +22,7 @@ struct JointFlexureOptions {
   double agreeMm = 30.0;       // a pair of candidates closer than this through the alignment agrees
   double minSegmentMm = 40.0;  // shortest segment allowed between flexures (and from the ends)
   int optionsPerFlexure = 6;
+  bool meetHalfway = true;     // a pair that agrees: both moved halfway to the other through the alignment
 };
 
 struct JointFlexureChoice {
