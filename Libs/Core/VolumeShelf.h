@@ -60,8 +60,7 @@ class VolumeShelf {
       std::atomic_thread_fence(std::memory_order_acquire);
       return std::move(*same);
     }
-    return std::visit([&](const auto& volume) { return MapVoxels<T>(volume, [](auto v) { return static_cast<T>(v); }, progress); },
-                      *kept);
+    return Converted<T>(*kept, progress);
   }
 
   // Lets go of what is kept for `path`, read or not (a stage expected to read it did not run):
@@ -79,9 +78,7 @@ class VolumeShelf {
     const std::shared_ptr<Kept> kept = TakeShared(path);
     if (!kept) return nullptr;
     if (const auto* same = std::get_if<Volume<T>>(kept.get())) return std::shared_ptr<const Volume<T>>(kept, same);
-    return std::make_shared<const Volume<T>>(
-        std::visit([&](const auto& volume) { return MapVoxels<T>(volume, [](auto v) { return static_cast<T>(v); }, progress); },
-                   *kept));
+    return std::make_shared<const Volume<T>>(Converted<T>(*kept, progress));
   }
 
   // The same with each voxel mapped by `map` (e.g. a label map to a 0/1 mask of one label).
@@ -94,6 +91,14 @@ class VolumeShelf {
 
  private:
   using Kept = std::variant<Volume<short>, Volume<unsigned char>, Volume<float>>;
+
+  // A copy of a kept volume as pixel type T (each voxel cast, as a reader converts).
+  template <typename T>
+  static Volume<T> Converted(const Kept& kept, ProgressSink* progress) {
+    return std::visit([&](const auto& volume) { return MapVoxels<T>(volume, [](auto v) { return static_cast<T>(v); }, progress); },
+                      kept);
+  }
+
   struct Entry {
     int reads = 0;
     std::shared_ptr<Kept> volume;  // shared with a Take that copies it outside the lock

@@ -2,6 +2,7 @@
 // (the CT noise is a function of the voxel, so an ideal cleansing reproduces it voxel by voxel
 // wherever the wall is not hidden in a three-material mixture).
 #include "Cleansing/ElectronicCleansing.h"
+#include "Core/RecordingProgress.h"
 #include "Phantom/Phantom.h"
 
 #include <gtest/gtest.h>
@@ -129,11 +130,6 @@ TEST(Cleansing, BrightTissueAwayFromAirIsKept) {
 
 TEST(Cleansing, CancelStopsTheWork) {
   const Pair p = MakePair(Posture::Supine, 1, 2.5);
-  struct CancelAfter : ProgressSink {
-    int calls = 0;
-    void Report(double) override {
-      if (++calls == 5) throw Cancelled();
-    }
-  } cancel;
+  RecordingProgress cancel(5);
   EXPECT_THROW(Cleanse(p.withFluid, CleansingParameters(), cancel), Cancelled);
 }

@@ -1,5 +1,6 @@
 // Image reading and writing: the real CT as NIfTI and as DICOM, round trips, bad inputs.
 #include "Core/Testing/FreshTempDir.h"
+#include "Core/RecordingProgress.h"
 #include "Core/Error.h"
 #include "IO/ImageIO.h"
 
@@ -336,16 +337,10 @@ TEST(ImageIO, ShelfHandsOnExpectedVolumesAndFallsBackToTheFile) {
   EXPECT_EQ(io::ReadImageShared<float>(&shelf, kept, "label")->voxels[0], 7.0f);  // converted from the shelf
 
   // A conversion taken from the shelf polls the host between its pieces: a cancelled host stops it.
-  struct Cancelling : ProgressSink {
-    int reports = 0;
-    void Report(double) override {
-      ++reports;
-      throw Cancelled();
-    }
-  } cancelling;
+  RecordingProgress cancelling(1);
   shelf.Expect(kept, 1);
   shelf.Put(kept, Volume<unsigned char>(inMemory));
   EXPECT_THROW(io::ReadImageKept<float>(&shelf, kept, "label", {}, &cancelling), Cancelled);
-  EXPECT_EQ(cancelling.reports, 1);
+  EXPECT_EQ(cancelling.fractions.size(), 1u);
   fs::remove_all(dir);
 }

@@ -4,6 +4,7 @@
 // noise (15 HU) moves a voxel across the threshold within a few hundredths of a voxel of the
 // wall, plus the voxels the topology growth leaves out: Dice must be close to 1.
 #include "SegmentationTestUtils.h"
+#include "Core/RecordingProgress.h"
 #include "Phantom/Phantom.h"
 #include "Segmentation/EulerCharacteristic.h"
 #include "Segmentation/LumenSegmentation.h"
@@ -207,11 +208,6 @@ TEST(PhantomSegmentation, LungLikeAndSmallComponentsAreDropped) {
 
 TEST(PhantomSegmentation, Cancels) {
   const Case c = Make(Options(2.5, false, 1));
-  struct Cancelling : ProgressSink {
-    int calls = 0;
-    void Report(double) override {
-      if (++calls == 5) throw Cancelled();
-    }
-  } progress;
+  RecordingProgress progress(5);
   EXPECT_THROW(SegmentColonLumen(c.ct, SegmentationOptions{}, progress), Cancelled);
 }

@@ -2,6 +2,7 @@
 // Independent checks: Euler characteristic by V - E + F - C counting and component counts by a
 // plain breadth-first search (neither is used by the growth).
 #include "SegmentationTestUtils.h"
+#include "Core/RecordingProgress.h"
 #include "Segmentation/EulerCharacteristic.h"
 #include "Segmentation/ItkSegmentationFilters.h"
 #include "Segmentation/LabelComponents.h"
@@ -135,9 +136,7 @@ TEST(TopologyGrowth, OurComponentLabelsAreItksOnNoiseAndShapes) {
   EXPECT_EQ(detail::LabelComponents26(GridOf(block), block.voxels.data(), labels, none), 1u);
   EXPECT_EQ(labels.size(), block.voxels.size());
   // A host that cancels stops it at its first poll.
-  struct Cancelling : ProgressSink {
-    void Report(double) override { throw Cancelled(); }
-  } cancelling;
+  RecordingProgress cancelling(1);
   EXPECT_THROW(detail::LabelComponents26(GridOf(block), block.voxels.data(), labels, cancelling), Cancelled);
 }
 

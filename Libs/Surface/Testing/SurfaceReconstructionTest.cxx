@@ -1,5 +1,6 @@
 // Surface reconstruction on the phantom at coarse spacing, against its exact true wall.
 #include "Surface/MeanCurvature.h"
+#include "Core/RecordingProgress.h"
 #include "Surface/SurfaceReconstruction.h"
 #include "SurfaceDistance.h"
 
@@ -246,21 +247,10 @@ TEST(SurfaceReconstruction, RejectsBadInput) {
   EXPECT_THROW(ReconstructSurface(label, &ct, o, np), Error);  // other grid
 }
 
-class CancelAfter : public ProgressSink {
- public:
-  explicit CancelAfter(int n) : n_(n) {}
-  void Report(double) override {
-    if (--n_ < 0) throw Cancelled();
-  }
-
- private:
-  int n_;
-};
-
 TEST(SurfaceReconstruction, Cancels) {
   const Phantom& p = Shared();
   for (int n : {0, 3, 6, 9}) {
-    CancelAfter c(n);
+    RecordingProgress c(n + 1);  // Cancel after n reports
     EXPECT_THROW(ReconstructSurface(p.label, &p.ct, SurfaceOptions(), c), Cancelled);
   }
 }

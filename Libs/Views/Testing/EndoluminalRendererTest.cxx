@@ -5,6 +5,7 @@
 // axes (direction cosines honoured); renders are byte-identical when repeated; a Cancel heard
 // while a picture renders stops it part way.
 #include "Views/EndoluminalRenderer.h"
+#include "Core/RecordingProgress.h"
 
 #include "Core/Cancel.h"
 #include "Core/Error.h"
@@ -54,16 +55,6 @@ Volume<short> Phantom(const Eigen::Matrix3d& direction, double spacing = 1.0, in
       }
   return v;
 }
-
-// Hears a picture's progress; throws Cancelled at the cancelAt-th report (0: never).
-struct ListeningSink : ProgressSink {
-  int cancelAt = 0;
-  std::vector<double> heard;
-  void Report(double fraction) override {
-    heard.push_back(fraction);
-    if (static_cast<int>(heard.size()) == cancelAt) throw Cancelled();
-  }
-};
 
 double SecondsOf(const std::function<void()>& f) {
   const auto start = std::chrono::steady_clock::now();
@@ -158,22 +149,21 @@ TEST(EndoluminalRenderer, HearsCancelWhileRenderingAndThenRendersWhole) {
   const CameraPose cam = Looking({0, 0, 10}, {0, 0, 1}, {0, 1, 0});
   EndoluminalRenderer r(o);
   const RgbImage ref = r.Render(ct, cam, "tube");
-  ListeningSink whole;
+  RecordingProgress whole;
   RgbImage same;
   const double wholeSeconds = SecondsOf([&] { same = r.Render(ct, cam, "tube", &whole); });
   EXPECT_TRUE(same.rgb == ref.rgb) << "listening changed the picture";
-  ASSERT_GE(whole.heard.size(), 4u) << "progress from inside the picture";
-  EXPECT_TRUE(std::is_sorted(whole.heard.begin(), whole.heard.end()));
-  EXPECT_GE(whole.heard.front(), 0.0);
-  EXPECT_LE(whole.heard.back(), 1.0);
+  ASSERT_GE(whole.fractions.size(), 4u) << "progress from inside the picture";
+  EXPECT_TRUE(std::is_sorted(whole.fractions.begin(), whole.fractions.end()));
+  EXPECT_GE(whole.fractions.front(), 0.0);
+  EXPECT_LE(whole.fractions.back(), 1.0);
 
-  ListeningSink cancelling;
-  cancelling.cancelAt = 1;
+  RecordingProgress cancelling(1);
   const double cancelledSeconds = SecondsOf([&] { EXPECT_THROW(r.Render(ct, cam, "tube", &cancelling), Cancelled); });
-  EXPECT_EQ(cancelling.heard.size(), 1u) << "heard more after the Cancel";
+  EXPECT_EQ(cancelling.fractions.size(), 1u) << "heard more after the Cancel";
   EXPECT_LT(cancelledSeconds, 0.5 * wholeSeconds) << "the rest of the picture was not skipped (whole picture "
                                                   << wholeSeconds << " s, cancelled " << cancelledSeconds << " s)";
-  std::cout << "whole picture " << wholeSeconds << " s (" << whole.heard.size() << " reports), cancelled at the first "
+  std::cout << "whole picture " << wholeSeconds << " s (" << whole.fractions.size() << " reports), cancelled at the first "
             << cancelledSeconds << " s\n";
   const RgbImage after = r.Render(ct, cam, "tube");
   EXPECT_TRUE(after.rgb == ref.rgb) << "the picture after a Cancel is not whole";

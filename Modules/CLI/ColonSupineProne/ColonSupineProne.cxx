@@ -91,7 +91,6 @@ struct Step {
   bool optional = false;
 };
 
-// One run of the pipeline: stage folders (temporary until the end), stage records.
 // The run's wall seconds from its records: the stages run alone plus the blocks of jobs side by
 // side (a stage of a block the records do not give counts on its own). The whole run and
 // --reportOnly both count with this, so their summaries agree to the last bit.
@@ -110,6 +109,7 @@ double WallSeconds(const json& stages, const json& blocks) {
   return total;
 }
 
+// One run of the pipeline: stage folders (temporary until the end), stage records.
 class Pipeline {
  public:
   Pipeline(cli::ModuleContext& ctx, const Options& o) : ctx_(ctx), o_(o) {}
