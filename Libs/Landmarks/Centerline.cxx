@@ -69,17 +69,16 @@ Eigen::MatrixXd SmoothPolyline(const Eigen::MatrixXd& P, double sigma) {
   const int r = static_cast<int>(std::ceil(3 * sigma));
   std::vector<double> k(static_cast<std::size_t>(2 * r + 1));
   for (int i = -r; i <= r; ++i) k[static_cast<std::size_t>(i + r)] = std::exp(-0.5 * i * i / (sigma * sigma));
-  Eigen::MatrixXd out(n, 3);
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(n, P.cols());
   for (Eigen::Index i = 0; i < n; ++i) {
     // Symmetric window shrunk near the ends, so the ends stay put and are not pulled inwards.
     const int w = static_cast<int>(std::min<Eigen::Index>({static_cast<Eigen::Index>(r), i, n - 1 - i}));
-    Eigen::RowVector3d s = Eigen::RowVector3d::Zero();
     double ws = 0;
     for (int d = -w; d <= w; ++d) {
-      s += k[static_cast<std::size_t>(d + r)] * P.row(i + d);
+      out.row(i) += k[static_cast<std::size_t>(d + r)] * P.row(i + d);
       ws += k[static_cast<std::size_t>(d + r)];
     }
-    out.row(i) = s / ws;
+    out.row(i) /= ws;
   }
   return out;
 }

@@ -51,7 +51,8 @@ Centerline ComputeCenterline(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
 Centerline Reversed(const Centerline& c);
 
 // Polyline helpers: resample at an even step (first and last points kept), Gaussian smoothing
-// of an evenly sampled polyline (sigma in samples; end points are kept in place).
+// of an evenly sampled polyline, or of any sampled signal with one column per value (sigma in
+// samples; end points are kept in place).
 Eigen::MatrixXd ResamplePolyline(const Eigen::MatrixXd& P, double step);
 Eigen::MatrixXd SmoothPolyline(const Eigen::MatrixXd& P, double sigmaSamples);
 

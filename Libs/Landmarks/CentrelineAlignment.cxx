@@ -48,6 +48,40 @@ CentrelineAlignment::CentrelineAlignment(const Eigen::MatrixXd& a, const Eigen::
   matchedA_.resize(arcB_.size());
   for (Eigen::Index i = 0; i < arcA_.size(); ++i) matchedB_(i) = toArc(arcB_, warp.matchedInB(i));
   for (Eigen::Index j = 0; j < arcB_.size(); ++j) matchedA_(j) = toArc(arcA_, warp.matchedInA(j));
+  if (o.smoothMm > 0) SpreadJumps(o.smoothMm / o.stepMm);
+}
+
+void CentrelineAlignment::SpreadJumps(double sigmaSamples) {
+  const double ratio = arcB_(arcB_.size() - 1) / std::max(1e-12, arcA_(arcA_.size() - 1));
+  const Eigen::VectorXd offset = SmoothPolyline(matchedB_ - ratio * arcA_, sigmaSamples);
+  matchedB_ = ratio * arcA_ + offset;
+  for (Eigen::Index i = 1; i < matchedB_.size(); ++i) matchedB_(i) = std::max(matchedB_(i), matchedB_(i - 1));
+  // b -> a from the same path, so the two directions stay each other's inverse.
+  for (Eigen::Index j = 0; j < arcB_.size(); ++j) matchedA_(j) = analysis::InterpolateLinear(matchedB_, arcA_, arcB_(j));
+}
+
+ArcMap::ArcMap(const Eigen::MatrixXd& from, const Eigen::MatrixXd& onto, double stepMm) {
+  const Eigen::MatrixXd F = ResamplePolyline(from, stepMm);
+  from_ = analysis::ArcLength(F);
+  analysis::ProjectionOptions po;
+  po.excludeBeyondEnds = false;
+  onto_ = analysis::ProjectToMidline(F, onto, po).arc;
+  for (Eigen::Index i = 1; i < onto_.size(); ++i) onto_(i) = std::max(onto_(i), onto_(i - 1));
+}
+
+double ArcMap::Forward(double arcFrom) const { return analysis::InterpolateLinear(from_, onto_, arcFrom); }
+double ArcMap::Backward(double arcOnto) const { return analysis::InterpolateLinear(onto_, from_, arcOnto); }
+
+CentrelineAlignment CentrelineAlignment::InArcsOf(const ArcMap& onA, const ArcMap& onB) const {
+  CentrelineAlignment r;
+  r.meanCost = meanCost;
+  r.arcA_ = onA.FromArcs();
+  r.arcB_ = onB.FromArcs();
+  r.matchedB_.resize(r.arcA_.size());
+  r.matchedA_.resize(r.arcB_.size());
+  for (Eigen::Index i = 0; i < r.arcA_.size(); ++i) r.matchedB_(i) = onB.Backward(AToB(onA.Forward(r.arcA_(i))));
+  for (Eigen::Index j = 0; j < r.arcB_.size(); ++j) r.matchedA_(j) = onA.Backward(BToA(onB.Forward(r.arcB_(j))));
+  return r;
 }
 
 double CentrelineAlignment::AToB(double arcA) const { return analysis::InterpolateLinear(arcA_, matchedB_, arcA); }

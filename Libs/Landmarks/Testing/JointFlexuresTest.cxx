@@ -77,6 +77,31 @@ TEST(JointFlexures, CentrelineAlignmentFindsTheSamePlaceAcrossAStretchedSegment)
   EXPECT_LT(m.meanCost, 0.1);
 }
 
+TEST(JointFlexures, AnAlignmentToldInAnotherCurvesArcsIsTheSamePairing) {
+  // Other curves through the same colons: each centreline with a straight 30 mm (a) and 50 mm (b)
+  // lead-in before its anal end, so a place at arc x along the centreline is at x + 30 (x + 50)
+  // along the other curve.
+  const Pair p = MakePair();
+  const CentrelineAlignment m(p.a, p.b);
+  const auto leadIn = [](const Eigen::MatrixXd& P, double mm) {
+    const Eigen::RowVector3d back = (P.row(0) - P.row(10)).normalized();
+    Eigen::MatrixXd Q(P.rows() + 1, 3);
+    Q << P.row(0) + mm * back, P;
+    return Q;
+  };
+  const Eigen::MatrixXd a2 = leadIn(p.a, 30.0), b2 = leadIn(p.b, 50.0);
+  const ArcMap onA(a2, p.a), onB(b2, p.b);
+  EXPECT_NEAR(onA.Forward(130.0), 100.0, 0.5);
+  EXPECT_NEAR(onA.Backward(100.0), 130.0, 0.5);
+  const CentrelineAlignment told = m.InArcsOf(onA, onB);
+  for (double x = 50.0; x <= 900.0; x += 50.0) {
+    EXPECT_NEAR(told.AToB(x + 30.0), m.AToB(x) + 50.0, 1.0) << x;
+    EXPECT_NEAR(told.BToA(m.AToB(x) + 50.0), x + 30.0, 1.0) << x;
+  }
+  // The lead-ins themselves lie before either centreline: they go to its start.
+  EXPECT_NEAR(told.AToB(10.0), 50.0, 1.0);
+}
+
 FlexureCandidates Candidates(const std::array<std::vector<FlexureCandidate>, 4>& c) {
   FlexureCandidates out;
   out.flexure = c;
