@@ -19,4 +19,11 @@ struct MarkupList {
   std::vector<ControlPoint> points;
 };
 
+// The positions as rows (n x 3).
+inline Eigen::MatrixXd Positions(const MarkupList& m) {
+  Eigen::MatrixXd P(static_cast<Eigen::Index>(m.points.size()), 3);
+  for (std::size_t i = 0; i < m.points.size(); ++i) P.row(static_cast<Eigen::Index>(i)) = m.points[i].position.transpose();
+  return P;
+}
+
 }  // namespace colonmap

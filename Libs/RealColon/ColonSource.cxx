@@ -121,8 +121,7 @@ ColonSource FromFolder(const std::string& dir) {
   if (mid.points.size() < 2) throw InputError("real colon midline", midlineFile, "needs at least two points");
   for (const ControlPoint& p : mid.points)
     if (!p.position.allFinite()) throw InputError("real colon midline", midlineFile, "has a point whose coordinates are not finite numbers");
-  c.midline.resize(static_cast<Eigen::Index>(mid.points.size()), 3);
-  for (std::size_t i = 0; i < mid.points.size(); ++i) c.midline.row(static_cast<Eigen::Index>(i)) = mid.points[i].position.transpose();
+  c.midline = Positions(mid);
   const MarkupList flex = io::ReadMarkups(flexureFile, "real colon flexures");
   std::map<std::string, Eigen::Vector3d> byLabel;
   for (const ControlPoint& p : flex.points) {

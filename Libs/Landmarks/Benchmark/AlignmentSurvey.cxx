@@ -36,12 +36,6 @@ using namespace colonmap::landmarks;
 
 namespace {
 
-Eigen::MatrixXd Points(const MarkupList& m) {
-  Eigen::MatrixXd P(static_cast<Eigen::Index>(m.points.size()), 3);
-  for (std::size_t i = 0; i < m.points.size(); ++i) P.row(static_cast<Eigen::Index>(i)) = m.points[i].position.transpose();
-  return P;
-}
-
 // Fractional index of the nearest point of `axis` to each row of `P`.
 Eigen::VectorXd MaterialIndex(const Eigen::MatrixXd& P, const Eigen::MatrixXd& axis) {
   analysis::ProjectionOptions po;
@@ -103,11 +97,11 @@ int main(int argc, char** argv) {
           io::WriteMarkups(m, dir + "/" + args[0] + "/" + scan + "/centerline.mrk.json", "rule curve");
         }
       } else {
-        ourA = Points(io::ReadMarkups(dir + "/" + args[0] + "/supine/centerline.mrk.json", "centreline"));
-        ourB = Points(io::ReadMarkups(dir + "/" + args[0] + "/prone/centerline.mrk.json", "centreline"));
+        ourA = Positions(io::ReadMarkups(dir + "/" + args[0] + "/supine/centerline.mrk.json", "centreline"));
+        ourB = Positions(io::ReadMarkups(dir + "/" + args[0] + "/prone/centerline.mrk.json", "centreline"));
       }
-      const Eigen::MatrixXd trueA = Points(io::ReadMarkups(dir + "/phantom/supine_centerline.mrk.json", "true centreline"));
-      const Eigen::MatrixXd trueB = Points(io::ReadMarkups(dir + "/phantom/prone_centerline.mrk.json", "true centreline"));
+      const Eigen::MatrixXd trueA = Positions(io::ReadMarkups(dir + "/phantom/supine_centerline.mrk.json", "true centreline"));
+      const Eigen::MatrixXd trueB = Positions(io::ReadMarkups(dir + "/phantom/prone_centerline.mrk.json", "true centreline"));
       const double materialStep = analysis::ArcLength(trueA)(trueA.rows() - 1) / static_cast<double>(trueA.rows() - 1);
       const CentrelineAlignment alignment(ourA, ourB, options);
       const Eigen::VectorXd arcA = analysis::ArcLength(ourA), arcB = analysis::ArcLength(ourB);

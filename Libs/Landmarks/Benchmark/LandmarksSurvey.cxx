@@ -26,12 +26,6 @@ using namespace colonmap::landmarks;
 
 namespace {
 
-Eigen::MatrixXd Points(const MarkupList& m) {
-  Eigen::MatrixXd P(static_cast<Eigen::Index>(m.points.size()), 3);
-  for (std::size_t i = 0; i < m.points.size(); ++i) P.row(static_cast<Eigen::Index>(i)) = m.points[i].position.transpose();
-  return P;
-}
-
 // Fraction of `points` within 8 mm of `band`, over the band's extent.
 double Coverage(const Eigen::MatrixXd& points, const Eigen::MatrixXd& band) {
   int near = 0, counted = 0;
@@ -48,7 +42,7 @@ double Coverage(const Eigen::MatrixXd& points, const Eigen::MatrixXd& band) {
 nlohmann::json Survey(const std::string& dir, const std::string& scan) {
   const TriangleMesh surface = io::ReadMesh(dir + "/surface/" + scan + "_surface.vtp", "surface");
   const PolylineSet truth = io::ReadPolylines(dir + "/phantom/" + scan + "_taeniae.vtp", "true taeniae");
-  const Eigen::MatrixXd axis = Points(io::ReadMarkups(dir + "/phantom/" + scan + "_centerline.mrk.json", "true centreline"));
+  const Eigen::MatrixXd axis = Positions(io::ReadMarkups(dir + "/phantom/" + scan + "_centerline.mrk.json", "true centreline"));
   const MarkupList flexures = io::ReadMarkups(dir + "/phantom/" + scan + "_flexures.mrk.json", "true flexures");
   NullProgress none;
   const LandmarkResult r = FindLandmarks(surface, {}, none);
