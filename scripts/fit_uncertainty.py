@@ -6,7 +6,7 @@ ground truth and says how it holds on pairs it was not fitted on (issue 20). A b
 
 Each pool is a registration_seeds.py cache (CACHE/seed<N>/RUNS/harmonic/{errors.json,registration.json} or,
 with its --work CACHE/RUNS, CACHE/RUNS/seed<N>/harmonic; RUNS defaults to "runs"), e.g. phantom0.5=/tmp/ph3 gca=/tmp/rc-gca-00020:runs2. The model is
-log sigma = c . x with x = UncertaintyFeatures (the same 13 inputs as the C++), fitted by least squares
+log sigma = c . x with x = UncertaintyFeatures (the same 15 inputs as the C++), fitted by least squares
 of log(max(true error, 0.2 mm)) on the evaluation wall points and polyps (polyps weighted by
 --polyp-weight), coefficients but the intercept kept >= 0. The 90% bound: with --bound q90,
 sigma * exp(q90), q90 the 90% quantile of the fit's log residuals; with --bound quantile (the
@@ -33,7 +33,7 @@ import re
 import statistics
 
 FEATURES = ["1", "log1p(loo)", "log1p(near/10)", "log1p(corr)", "log K", "1-pathCorrelation", "droppedFraction",
-            "1/(1+matchesPer100mm)", "exp(-flex/30)", "1-curvatureAgreement", "lengthMismatch", "curv", "untrusted"]
+            "1/(1+matchesPer100mm)", "exp(-flex/30)", "1-curvatureAgreement", "lengthMismatch", "curv", "untrusted", "log scale", "log1p(along/10)"]
 SOURCE = {"phantom": "tube"}
 POLYP_WEIGHT = 1.0  # --polyp-weight  # pools whose name starts with "phantom" are one source
 
@@ -46,7 +46,9 @@ def features(p, seg):
             seg["droppedFraction"], 1.0 / (1.0 + seg["matchesPer100mm"]),
             math.exp(-max(0.0, p.get("UncertaintyFlexureMm", 1000.0)) / 30.0), 1.0 - seg.get("curvatureAgreement", 1.0),
             seg.get("lengthMismatch", 0.0), min(5.0, max(0.0, p.get("UncertaintyCurvature", 0.0))),
-            0.0 if p.get("trusted", p.get("reliable", True)) else 1.0]
+            0.0 if p.get("trusted", p.get("reliable", True)) else 1.0,
+            min(3.0, max(-2.0, math.log(max(1e-6, p.get("UncertaintyScale", 1.0))))),
+            math.log1p(max(0.0, p.get("UncertaintyAlongMm", 0.0)) / 10.0)]
 
 
 def load(pools):
@@ -206,7 +208,12 @@ def report(held):
             "above20mmWarned": sum(b > 20.0 or not r for _, b, r in large),
             "above20mmUnreliable": sum(not r for _, _, r in large),
             "above20mmUntrusted": sum(not p["trusted"] for p, _, _ in large),
+            "above20mmMissedByPool": {k: sum(1 for p, b, r in large if p["pair"].split("/")[0] == k and b <= 20.0 and r)
+                                      for k in sorted({p["pair"].split("/")[0] for p, _, _ in large})},
             "unreliableFraction": round(sum(not r for _, _, r in wall) / len(wall), 3),
+            "unreliableByPool": {k: round(sum(not r for p, _, r in wall if p["pair"].split("/")[0] == k) /
+                                          max(1, sum(1 for p, _, _ in wall if p["pair"].split("/")[0] == k)), 3)
+                                 for k in sorted({p["pair"].split("/")[0] for p, _, _ in wall})},
             "untrustedFraction": round(sum(not p["trusted"] for p, _, _ in wall) / len(wall), 3)}
 
 
@@ -216,7 +223,7 @@ def main():
     ap.add_argument("--test", action="append", default=[],
                     help="NAME=CACHE[:RUNS] pairs never fitted on (not even by the final fit): reported with the final model")
     ap.add_argument("--output", default=None)
-    ap.add_argument("--reliable-bound", type=float, default=10.0,
+    ap.add_argument("--reliable-bound", type=float, default=7.0,
                     help="ColonRegistration --reliableBoundMm: reliable = trusted and bound <= this (mm)")
     ap.add_argument("--bound", choices=("q90", "quantile"), default="q90",
                     help="the bound's model: the median's times one factor, or a quantile regression of its own")

@@ -12,8 +12,10 @@
 //    are unreliable.
 // Per vertex: trusted = segment trusted and not within reach of a suspect flexure end; reliable =
 // trusted and a 90% bound within maxBound90Mm (a position known no better than that is no guide
-// to where a finding lies: on our pool, of the errors above 20 mm, 9 in 10 had a bound above
-// 10 mm or an untrusted segment; docs/accuracy.md).
+// to where a finding lies). 7 mm, chosen on the uncertainty pool (2026-12-05, held back by seed;
+// docs/accuracy.md): of the errors above 20 mm, 95% then had a bound above 20 mm or were marked
+// unreliable (10 mm: 83%), at 19% of the points marked (10 mm: 12%): 3-9% on the pairs that
+// register well (tube at deformation 0.5, GCA, VHM), 37-46% on the hard ones (tube at 1.0, VHF).
 #include "Registration/RegistrationUncertainty.h"
 
 #include <Eigen/Core>
@@ -28,7 +30,7 @@ struct ReliabilityOptions {
   double minCurvatureAgreement = 0.15;  // with no matched fold, curvature images correlating less: no evidence
   double maxLengthMismatch = 0.25;      // |log length ratio| above this: the segment may not be the same anatomy
   double flexureReachMm = 60.0;         // how far from a suspect flexure points are unreliable
-  double maxBound90Mm = 10.0;           // a larger 90% bound is not reliable
+  double maxBound90Mm = 7.0;            // a larger 90% bound is not reliable
 };
 
 struct SegmentTrust {

@@ -25,6 +25,18 @@
 //             of matches the one-to-one guard dropped, matches per 100 mm of the segment, 1 - the
 //             curvature images' correlation at their best shift, |log| of the segment's length
 //             ratio between the scans.
+//   scale(x): the flat map's local scale (mm per flat unit: geometric mean of sqrt(3D area / flat
+//             area) over the vertex's faces) over the segment's (MmPerFlatUnit). A flat error
+//             becomes scale times more millimetres there: where the colon balloons (a wide
+//             sigmoid), the conformal map shrinks it, and a small slip in the flat domain is a
+//             large one on the wall (issue 20: on HuBMAP VHF pairs, log scale correlated 0.51 with
+//             the log error, and the points above 20 mm that went unflagged had a scale of 2.4).
+//   along(x): how far (mm along the colon) the registration puts x from where the centreline's
+//             relative arc length alone would (both scans' segment ends are the same anatomy):
+//             where they disagree by a fold spacing or more, one of them slipped (issue 20: the
+//             tube at deformation 1.0 had whole segments one haustrum off, 20-27 mm, with bounds
+//             of 4-9 mm; points whose two maps disagreed by over 20 mm were all more than 20 mm
+//             off).
 //   untrusted: 1 where RegistrationReliability.h does not trust the point (its segment rests on
 //             nothing the scans share, or it lies near a suspect flexure), else 0. Known only
 //             once every segment is registered: ApplyTrust sets it (issue 20: a fallback or a
@@ -68,12 +80,16 @@ struct UncertaintyComponents {
   Eigen::VectorXd endMm[2];  // distance along the segment (mm) to its v-min and its v-max end
   Eigen::VectorXd flexureMm; // to the nearest end that is a flexure (kNoFlexureMm when none)
   Eigen::VectorXd curvature; // the curv input above (0 without mean curvature)
+  Eigen::VectorXd scale;     // the scale input above (1 on a map of even scale)
+  Eigen::VectorXd alongMm;   // the along input above (0 without arc lengths)
 };
 
 // One point's inputs (the per-vertex components at one vertex).
 struct PointEvidence {
   double loo = 0.0, nearMm = 0.0, correctionMm = 0.0, dilatation = 1.0, flexureMm = kNoFlexureMm, curvature = 0.0;
   bool trusted = true;
+  double scale = 1.0;
+  double alongMm = 0.0;
 };
 
 struct VertexUncertainty {
@@ -91,16 +107,18 @@ double FlatLengthMm(const FlatSegment& flat);
 
 // flat: the supine segment (uv, F, position, period); h: n x 2 correction (zero rows when none);
 // K: per-face dilatation (m values, +inf allowed); constraints: the kept ones; meanCurvature: per
-// vertex (1/mm; empty: no curvature input).
+// vertex (1/mm; empty: no curvature input); alongMm: per vertex (empty: 0).
 VertexUncertainty EstimateUncertainty(const FlatSegment& flat, const Eigen::MatrixXd& h, const Eigen::VectorXd& K,
                                       const std::vector<ConstraintPoint>& constraints, const SegmentEvidence& segment,
-                                      const Eigen::VectorXd& meanCurvature = Eigen::VectorXd(), int neighbours = 6);
+                                      const Eigen::VectorXd& meanCurvature = Eigen::VectorXd(),
+                                      const Eigen::VectorXd& alongMm = Eigen::VectorXd(), int neighbours = 6);
 
 // The model's inputs at one point, in the order of its coefficients (1 first): 1, log(1 + loo),
 // log(1 + near / 10 mm), log(1 + corr), log K (K >= 1, +inf as 10), 1 - pathCorrelation,
 // droppedFraction, 1 / (1 + matchesPer100mm), exp(-flex / 30 mm), 1 - curvatureAgreement,
-// lengthMismatch, curv, untrusted. scripts/fit_uncertainty.py computes the same.
-constexpr int kUncertaintyFeatures = 13;
+// lengthMismatch, curv, untrusted, log scale (clamped to [-2, 3]), log(1 + along / 10 mm).
+// scripts/fit_uncertainty.py computes the same.
+constexpr int kUncertaintyFeatures = 15;
 Eigen::Matrix<double, kUncertaintyFeatures, 1> UncertaintyFeatures(const PointEvidence& point, const SegmentEvidence& segment);
 
 // The model alone (for tests and for documenting it): sigma from the components of one point.

@@ -23,19 +23,39 @@ double Seconds(std::chrono::steady_clock::time_point& t0) {
   return s;
 }
 
-// (u, t): flat u and the relative arc length t in [0, 1] within the segment.
-Eigen::MatrixXd ArcLengthCoordinates(const SegmentInput& s) {
-  if (s.arcLength.size() != s.flat.uv.rows()) throw Error("the centerline method needs CenterlineArcLength on every vertex");
-  // Robust ends (1st and 99th percentiles): a vertex whose nearest centerline point lies on a
-  // neighbouring loop of the colon must not stretch the whole segment's scale.
+// The segment's CenterlineArcLength span (arcLength given on every vertex): its 1st and 99th
+// percentiles (robust ends: a vertex whose nearest centerline point lies on a neighbouring loop
+// of the colon must not stretch the whole segment's scale).
+std::pair<double, double> ArcSpan(const SegmentInput& s) {
   std::vector<double> a(s.arcLength.data(), s.arcLength.data() + s.arcLength.size());
   std::sort(a.begin(), a.end());
-  const double a0 = a[a.size() / 100], a1 = a[a.size() - 1 - a.size() / 100];
+  return {a[a.size() / 100], a[a.size() - 1 - a.size() / 100]};
+}
+
+bool HasArcLengths(const SegmentInput& s) { return s.arcLength.size() > 0 && s.arcLength.size() == s.flat.uv.rows(); }
+
+// (u, t): flat u and the relative arc length t in [0, 1] within the segment.
+Eigen::MatrixXd ArcLengthCoordinates(const SegmentInput& s) {
+  if (!HasArcLengths(s)) throw Error("the centerline method needs CenterlineArcLength on every vertex");
+  const auto [a0, a1] = ArcSpan(s);
   if (!(a1 > a0)) throw Error("CenterlineArcLength is constant over the segment");
   Eigen::MatrixXd ut(s.flat.uv.rows(), 2);
   ut.col(0) = s.flat.uv.col(0);
   ut.col(1) = ((s.arcLength.array() - a0) / (a1 - a0)).cwiseMax(0.0).cwiseMin(1.0);
   return ut;
+}
+
+// Per supine vertex, how far (mm along the colon) its image lies from where the centreline arc
+// length alone would put it (the same relative arc length in the prone segment); empty without
+// usable arc lengths on both.
+Eigen::VectorXd AlongDisagreementMm(const SegmentInput& supine, const SegmentInput& prone, const VertexImages& forward) {
+  if (!HasArcLengths(supine) || !HasArcLengths(prone)) return Eigen::VectorXd();
+  const auto [s0, s1] = ArcSpan(supine);
+  const auto [p0, p1] = ArcSpan(prone);
+  if (!(s1 > s0) || !(p1 > p0) || !supine.arcLength.allFinite() || !prone.arcLength.allFinite()) return Eigen::VectorXd();
+  const Eigen::VectorXd imageArc = Interpolate(forward, prone.flat.F, prone.arcLength).col(0);
+  const Eigen::ArrayXd ts = (supine.arcLength.array() - s0) / (s1 - s0), tp = (imageArc.array() - p0) / (p1 - p0);
+  return ((tp - ts).abs() * 0.5 * ((s1 - s0) + (p1 - p0))).matrix();
 }
 
 // The Harmonic method's steps after eta: folds, matches, constraints, h; r.imageUV += h.
@@ -217,7 +237,8 @@ SegmentRegistration RegisterSegment(const SegmentInput& supine, const SegmentInp
   const Eigen::MatrixXd h = method == RegistrationMethod::Harmonic && r.correction.h.rows() == supine.flat.uv.rows()
                                 ? Eigen::MatrixXd(r.imageUV - etaUV)
                                 : Eigen::MatrixXd(Eigen::MatrixXd::Zero(supine.flat.uv.rows(), 2));
-  r.uncertainty = EstimateUncertainty(supine.flat, h, Dilatation(r.mu), r.constraints, evidence, supine.meanCurvature);
+  r.uncertainty = EstimateUncertainty(supine.flat, h, Dilatation(r.mu), r.constraints, evidence, supine.meanCurvature,
+                                      AlongDisagreementMm(supine, prone, r.forward));
   r.times.emplace_back("uncertainty", Seconds(t0));
   progress.Report(1.0);
   return r;

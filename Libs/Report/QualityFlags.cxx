@@ -159,7 +159,7 @@ void RegistrationFlags(const StageSummaries& s, const QualityThresholds& t, std:
       f.detail += std::string(seg) + (segment["trusted"].get<bool>() ? " yes" : " NO") + " (expected error " +
                   Fixed(Number(segment, "expectedErrorMm", 0.0), 1) + " mm), ";
     }
-    f.detail += f.ok ? "findings carry reliable=false only where their bound exceeds " + Fixed(Number(r, "reliableBoundMm", 10.0), 0) + " mm"
+    f.detail += f.ok ? "findings carry reliable=false only where their bound exceeds " + Fixed(Number(r, "reliableBoundMm", 7.0), 0) + " mm"
                      : "findings on untrusted segments carry reliable=false";
     flags.push_back(f);
   }

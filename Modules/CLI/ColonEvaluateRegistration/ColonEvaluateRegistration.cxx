@@ -141,7 +141,8 @@ void Run(cli::ModuleContext& ctx) {
                   {"mappedFlat", {flatMapped.x(), flatMapped.y()}}, {"trueFlat", {flatTrue.x(), flatTrue.y()}}};
       // The uncertainty's components where the registration has them (for calibration studies).
       for (const char* a : {"UncertaintyLoo", "UncertaintyNearMm", "UncertaintyCorrectionMm", "UncertaintyDilatation",
-                            "UncertaintyFlexureMm", "UncertaintyCurvature"}) {
+                            "UncertaintyFlexureMm", "UncertaintyCurvature", "UncertaintyScale",
+                            "UncertaintyAlongMm"}) {
         const double v = forward.SourceValue(a, t);
         if (std::isfinite(v)) row[a] = v;
       }

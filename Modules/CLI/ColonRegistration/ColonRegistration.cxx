@@ -387,7 +387,8 @@ void Run(cli::ModuleContext& ctx) {
         {"Uncertainty", &U.median}, {"Uncertainty90", &U.bound90}, {"UncertaintyLoo", &U.components.loo},
         {"UncertaintyNearMm", &U.components.nearMm}, {"UncertaintyCorrectionMm", &U.components.correctionMm},
         {"UncertaintyDilatation", &U.components.dilatation}, {"UncertaintyFlexureMm", &U.components.flexureMm},
-        {"UncertaintyCurvature", &U.components.curvature}};
+        {"UncertaintyCurvature", &U.components.curvature}, {"UncertaintyScale", &U.components.scale},
+        {"UncertaintyAlongMm", &U.components.alongMm}};
     for (const auto& [name, values] : uarrays) {
       supineParts[k].pointData[name] = DataArray{*values, false};
       proneParts[k].pointData[name] = DataArray{Interpolate(r.inverse, supineParts[k].F, *values), false};
