@@ -33,6 +33,13 @@ Eigen::VectorXd ArcLength(const Eigen::MatrixXd& polyline) {
   return c;
 }
 
+Eigen::Vector3d PointAtArc(const Eigen::MatrixXd& P, const Eigen::VectorXd& arc, double s) {
+  const Eigen::Index n = P.rows();
+  const Eigen::Index i = std::clamp<Eigen::Index>(std::upper_bound(arc.data(), arc.data() + n, s) - arc.data() - 1, 0, n - 2);
+  const double len = arc(i + 1) - arc(i), t = len > 0 ? std::clamp((s - arc(i)) / len, 0.0, 1.0) : 0.0;
+  return ((1 - t) * P.row(i) + t * P.row(i + 1)).transpose();
+}
+
 void SegmentFrames(const Eigen::MatrixXd& polyline, Eigen::MatrixXd& T, Eigen::MatrixXd& N, Eigen::MatrixXd& B,
                    const Eigen::Vector3d& normalHint) {
   const Eigen::Index m = std::max<Eigen::Index>(0, polyline.rows() - 1);

@@ -19,6 +19,10 @@ namespace analysis {
 // Cumulative arc length of a polyline (m x 3): m values, first 0, last the length.
 Eigen::VectorXd ArcLength(const Eigen::MatrixXd& polyline);
 
+// The point at arc length s along a polyline (m >= 2 points; arc = ArcLength(polyline)),
+// linear between its points, clamped to its ends.
+Eigen::Vector3d PointAtArc(const Eigen::MatrixXd& polyline, const Eigen::VectorXd& arc, double s);
+
 // Rotation-minimising frame per polyline segment (m - 1 rows each): unit tangent T, normal N
 // (N of segment 0 is the unit vector perpendicular to T nearest to normalHint, or to an axis
 // if the hint is (near) parallel), binormal B = T x N. Zero-length segments copy the previous

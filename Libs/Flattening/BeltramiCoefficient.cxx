@@ -50,17 +50,22 @@ double Quantile(const Eigen::VectorXd& values, double q) {
   return v[k];
 }
 
+Eigen::VectorXd SurfaceFaceAreas(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+  Eigen::VectorXd area(F.rows());
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    const Eigen::Vector3d p0 = V.row(F(f, 0)), p1 = V.row(F(f, 1)), p2 = V.row(F(f, 2));
+    area(f) = 0.5 * (p1 - p0).cross(p2 - p0).norm();
+  }
+  return area;
+}
+
 DistortionStats SummarizeDistortion(const Eigen::MatrixXd& V, const Eigen::MatrixXd& uv, const Eigen::MatrixXi& F,
                                     const Eigen::VectorXcd& mu) {
   DistortionStats s;
   s.faces = F.rows();
   if (F.rows() == 0) return s;
   const Eigen::VectorXd flat = SignedFlatAreas(uv, F);
-  Eigen::VectorXd area(F.rows());
-  for (Eigen::Index f = 0; f < F.rows(); ++f) {
-    const Eigen::Vector3d p0 = V.row(F(f, 0)), p1 = V.row(F(f, 1)), p2 = V.row(F(f, 2));
-    area(f) = 0.5 * (p1 - p0).cross(p2 - p0).norm();
-  }
+  const Eigen::VectorXd area = SurfaceFaceAreas(V, F);
   s.flipped = static_cast<long>((flat.array() <= 0.0).count());
   const Eigen::VectorXd absMu = mu.cwiseAbs();
   s.muMean = absMu.mean();

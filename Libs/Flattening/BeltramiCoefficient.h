@@ -17,6 +17,9 @@ Eigen::VectorXcd BeltramiCoefficient(const Eigen::MatrixXd& V, const Eigen::Matr
 // surface seen from its normal side).
 Eigen::VectorXd SignedFlatAreas(const Eigen::MatrixXd& uv, const Eigen::MatrixXi& F);
 
+// Area of each face of the surface V (m x 3).
+Eigen::VectorXd SurfaceFaceAreas(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
+
 // Summary of the distortion of one map.
 struct DistortionStats {
   long faces = 0;

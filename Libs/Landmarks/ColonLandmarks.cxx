@@ -37,14 +37,6 @@ std::string Fixed(double v, int digits) {
   return buf;
 }
 
-// The point at arc length `a` along P (arcs: P's arc lengths).
-Eigen::Vector3d PointAtArc(const Eigen::MatrixXd& P, const Eigen::VectorXd& arcs, double a) {
-  const Eigen::Index n = P.rows();
-  const Eigen::Index i = std::clamp<Eigen::Index>(std::upper_bound(arcs.data(), arcs.data() + n, a) - arcs.data() - 1, 0, n - 2);
-  const double len = arcs(i + 1) - arcs(i), t = len > 0 ? std::clamp((a - arcs(i)) / len, 0.0, 1.0) : 0.0;
-  return ((1 - t) * P.row(i) + t * P.row(i + 1)).transpose();
-}
-
 // The flexure rules run on the level-set curve they were tuned on (its corner cutting is part of
 // what they expect); each flexure is then carried to the nearest point of the centred curve.
 Flexures FlexuresOnCentred(const ColonAxis& axis, const std::array<double, 4>& ruleArcs) {
@@ -55,7 +47,7 @@ Flexures FlexuresOnCentred(const ColonAxis& axis, const std::array<double, 4>& r
   analysis::ProjectionOptions po;
   po.excludeBeyondEnds = false;
   for (int k = 0; k < 4; ++k) {
-    const Eigen::Vector3d p = PointAtArc(rule, ruleArc, ruleArcs[k]);
+    const Eigen::Vector3d p = analysis::PointAtArc(rule, ruleArc, ruleArcs[k]);
     const analysis::MidlineProjection proj = analysis::ProjectToMidline(p.transpose(), c.points, po);
     f.arc[k] = proj.arc(0);
     const Eigen::Index i = std::clamp<Eigen::Index>(proj.segment(0), 0, c.points.rows() - 2);

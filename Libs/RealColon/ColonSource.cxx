@@ -20,15 +20,6 @@ namespace fs = std::filesystem;
 
 const char* const kFlexureNames[4] = {"HF", "SF", "DSJ", "RSJ"};
 
-// Point of the polyline at arc length s from its start.
-Eigen::Vector3d PointAtArc(const Eigen::MatrixXd& P, const Eigen::VectorXd& arc, double s) {
-  Eigen::Index j = 0;
-  while (j + 2 < arc.size() && arc(j + 1) < s) ++j;
-  const double d = arc(j + 1) - arc(j);
-  const double t = d > 0 ? std::clamp((s - arc(j)) / d, 0.0, 1.0) : 0.0;
-  return ((1.0 - t) * P.row(j) + t * P.row(j + 1)).transpose();
-}
-
 // Midline index range of a GCA piece, from its map file.
 std::pair<int, int> PieceRange(const analysis::GcaModel& g, const std::string& piece) {
   const std::string file = "large-intestine-" + piece + ".vtk";
@@ -69,7 +60,7 @@ ColonSource FromGca(const std::string& dir) {
     c.flexures[3] = g.midline.row(idx).transpose();
     c.flexureSource[3] = "end of the atlas's Rectum piece (midline index " + std::to_string(idx) + ")";
   } else {
-    c.flexures[3] = PointAtArc(g.midline, g.midlineArc, kAssumedRectumMm);
+    c.flexures[3] = analysis::PointAtArc(g.midline, g.midlineArc, kAssumedRectumMm);
     c.flexureSource[3] = "assumed 150 mm along the atlas midline from the anus (the atlas has no RSJ)";
   }
   const analysis::GcaWeld w = analysis::WeldGcaColon(g);

@@ -4,8 +4,6 @@
 #include "Registration/FeatureMatching.h"
 #include "Surface/MeanCurvature.h"
 
-#include <Eigen/Geometry>
-
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -78,13 +76,11 @@ namespace {
 Eigen::VectorXd LocalScale(const FlatSegment& flat, double segmentScale) {
   const Eigen::Index n = flat.uv.rows();
   const Eigen::VectorXd flatArea = flattening::SignedFlatAreas(flat.uv, flat.F).cwiseAbs();
+  const Eigen::VectorXd area3 = flattening::SurfaceFaceAreas(flat.position, flat.F);
   Eigen::VectorXd sum = Eigen::VectorXd::Zero(n), count = Eigen::VectorXd::Zero(n);
   for (Eigen::Index f = 0; f < flat.F.rows(); ++f) {
-    const Eigen::Vector3d a = flat.position.row(flat.F(f, 0)), b = flat.position.row(flat.F(f, 1)),
-                          c = flat.position.row(flat.F(f, 2));
-    const double area3 = 0.5 * (b - a).cross(c - a).norm();
-    if (!(area3 > 0) || !(flatArea(f) > 0)) continue;
-    const double logScale = 0.5 * std::log(area3 / flatArea(f)) - std::log(segmentScale);
+    if (!(area3(f) > 0) || !(flatArea(f) > 0)) continue;
+    const double logScale = 0.5 * std::log(area3(f) / flatArea(f)) - std::log(segmentScale);
     for (int j = 0; j < 3; ++j) {
       sum(flat.F(f, j)) += logScale;
       count(flat.F(f, j)) += 1;

@@ -18,6 +18,7 @@
 // curves the flexure rules run on instead (FindColonAxis on surface/{scan}_surface.vtp), and
 // writes them to LANDMARKS_SUBDIR/{scan}/centerline.mrk.json (folders made beforehand) for later
 // runs without the flag.
+#include "Analysis/Interpolate.h"
 #include "Analysis/MidlineProjection.h"
 #include "IO/MarkupsIO.h"
 #include "IO/MeshIO.h"
@@ -42,20 +43,10 @@ Eigen::VectorXd MaterialIndex(const Eigen::MatrixXd& P, const Eigen::MatrixXd& a
   po.excludeBeyondEnds = false;
   const Eigen::VectorXd arc = analysis::ProjectToMidline(P, axis, po).arc;
   const Eigen::VectorXd axisArc = analysis::ArcLength(axis);
+  const Eigen::VectorXd axisIndex = Eigen::VectorXd::LinSpaced(axisArc.size(), 0.0, static_cast<double>(axisArc.size() - 1));
   Eigen::VectorXd index(arc.size());
-  for (Eigen::Index i = 0; i < arc.size(); ++i) {
-    const auto it = std::upper_bound(axisArc.data(), axisArc.data() + axisArc.size(), arc(i));
-    const Eigen::Index k = std::clamp<Eigen::Index>((it - axisArc.data()) - 1, 0, axisArc.size() - 2);
-    index(i) = static_cast<double>(k) + (arc(i) - axisArc(k)) / std::max(1e-12, axisArc(k + 1) - axisArc(k));
-  }
+  for (Eigen::Index i = 0; i < arc.size(); ++i) index(i) = analysis::InterpolateLinear(axisArc, axisIndex, arc(i));
   return index;
-}
-
-Eigen::RowVector3d PointAtArc(const Eigen::MatrixXd& P, const Eigen::VectorXd& arc, double s) {
-  const auto it = std::upper_bound(arc.data(), arc.data() + arc.size(), s);
-  const Eigen::Index k = std::clamp<Eigen::Index>((it - arc.data()) - 1, 0, arc.size() - 2);
-  const double t = std::clamp((s - arc(k)) / std::max(1e-12, arc(k + 1) - arc(k)), 0.0, 1.0);
-  return (1 - t) * P.row(k) + t * P.row(k + 1);
 }
 
 }  // namespace
@@ -111,8 +102,8 @@ int main(int argc, char** argv) {
       const int n = static_cast<int>(arcA(arcA.size() - 1) / 5.0);
       Eigen::MatrixXd PA(n, 3), PB(n, 3);
       for (int i = 0; i < n; ++i) {
-        PA.row(i) = PointAtArc(ourA, arcA, 5.0 * i);
-        PB.row(i) = PointAtArc(ourB, arcB, alignment.AToB(5.0 * i));
+        PA.row(i) = analysis::PointAtArc(ourA, arcA, 5.0 * i).transpose();
+        PB.row(i) = analysis::PointAtArc(ourB, arcB, alignment.AToB(5.0 * i)).transpose();
       }
       const Eigen::VectorXd error = (MaterialIndex(PA, trueA) - MaterialIndex(PB, trueB)) * materialStep;
       if (detail) {
@@ -136,7 +127,8 @@ int main(int argc, char** argv) {
         std::printf("  flexures:");
         for (const ControlPoint& f : flexures.points) {
           const double arc = analysis::ProjectToMidline(f.position.transpose(), ourA, po).arc(0);
-          const Eigen::MatrixXd pa = PointAtArc(ourA, arcA, arc), pb = PointAtArc(ourB, arcB, alignment.AToB(arc));
+          const Eigen::MatrixXd pa = analysis::PointAtArc(ourA, arcA, arc).transpose(),
+                              pb = analysis::PointAtArc(ourB, arcB, alignment.AToB(arc)).transpose();
           const double e = (MaterialIndex(pa, trueA)(0) - MaterialIndex(pb, trueB)(0)) * materialStep;
           flexureErrors.push_back(std::abs(e));
           std::printf(" %s %+.1f", f.label.c_str(), e);

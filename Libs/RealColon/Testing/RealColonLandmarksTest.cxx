@@ -31,13 +31,6 @@ double TrueArc(const RealColonScan& scan, const Eigen::Vector3d& p) {
   return analysis::ProjectToMidline(p.transpose(), scan.centreline.points, po).arc(0);
 }
 
-// The point of our centreline at arc length a (its samples are 1 mm apart).
-Eigen::Vector3d PointAtArc(const landmarks::Centerline& c, double a) {
-  Eigen::Index i = 0;
-  while (i + 1 < c.arc.size() && c.arc(i + 1) < a) ++i;
-  return c.points.row(i).transpose();
-}
-
 struct PairLandmarks {
   RealColonPair pair;
   std::array<landmarks::LandmarkResult, 2> result;
@@ -64,7 +57,7 @@ double Offset(const PairLandmarks& p, int k, int f) {
   const landmarks::LandmarkResult& r = p.result[k];
   const double truth = scan.ArcOfS(p.pair.material, p.pair.flexureS[f]);
   const double chosen = TrueArc(scan, r.flexures.position[f]);
-  const double own = TrueArc(scan, PointAtArc(r.centerline, r.joint->ownRuleArc[f]));
+  const double own = TrueArc(scan, analysis::PointAtArc(r.centerline.points, r.centerline.arc, r.joint->ownRuleArc[f]));
   std::printf("%s %-3s truth %7.1f  joint %7.1f (%+6.1f, %s)  own rules %7.1f (%+6.1f)\n", k ? "prone " : "supine",
               landmarks::Flexures::Names()[f], truth, chosen, chosen - truth, r.joint->how[f].c_str(), own, own - truth);
   return chosen - truth;
