@@ -3,9 +3,9 @@
 #include "Core/Error.h"
 
 #include <algorithm>
-#include <vector>
 #include <cmath>
 #include <sstream>
+#include <vector>
 
 namespace colonmap::landmarks {
 
