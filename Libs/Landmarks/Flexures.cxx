@@ -122,11 +122,14 @@ Flexures FindFlexures(const Eigen::MatrixXd& P, const Eigen::VectorXd& arc, cons
     std::nth_element(slopes.begin(), slopes.begin() + slopes.size() / 2, slopes.end());
     plunge = o.sigmoidSlowing * std::min(0.0, slopes[slopes.size() / 2]);
   }
+  const double level = -std::sin(o.sigmoidMaxDescentDeg * M_PI / 180.0);
   int dsj = trough;
   for (int i = sf; i > trough; --i) {
     if (z(i) > lowest) continue;
     const Eigen::RowVector3d t = travel(i);
-    if (t(2) < plunge) continue;  // descending as steeply as above: the descending colon, turned forward
+    // Still descending (as steeply as above, or steeper than sigmoidMaxDescentDeg): the
+    // descending colon, turned.
+    if (t(2) < std::max(plunge, level)) continue;
     if ((-t(1) - o.sigmoidMedialWeight * t(0)) / norm > o.sigmoidTurn) {
       dsj = i;
       break;

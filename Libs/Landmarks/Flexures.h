@@ -19,9 +19,13 @@
 //         anterior and medial (the sigmoid runs forward and to the midline on its mesocolon;
 //         unit direction of travel t over +-turnTangentMm: (-t_y - sigmoidMedialWeight t_x) /
 //         |(1, sigmoidMedialWeight)| above sigmoidTurn, where it descends at most sigmoidSlowing
-//         times as steeply as the descending colon above (median vertical part of travel): a
-//         descending colon that turns forward as it plunges on is still the descending colon,
-//         as on the HuBMAP male colon), else the trough itself;
+//         times as steeply as the descending colon above (median vertical part of travel) and
+//         no steeper than sigmoidMaxDescentDeg: a descending colon that turns forward or medially
+//         as it plunges on is still the descending colon, as on the HuBMAP male and female
+//         colons, whose atlases put the DSJ at the bottom of the descent), else the trough
+//         itself. (The tube phantom's generator puts its DSJ where its fixed descending colon
+//         meets the mobile sigmoid, 60-80 mm above the bottom of the descent: another convention;
+//         its check uses the bottom of its true descent, Testing/LandmarksPhantomTest.)
 //   RSJ = going up the rectum from its most vertical point (within rectumSearchMm of the anal
 //         end; the anal canal leans), the first point where the
 //         direction leaves +z by more than the exit angle (before the DSJ).
@@ -49,6 +53,9 @@ struct FlexureOptions {
   double sigmoidTurn = 0.5;           // DSJ: anterior-medial component of travel above this
   double sigmoidMedialWeight = 0.5;   // weight of the medial (-x) part in that component
   double sigmoidSlowing = 0.8;        // DSJ: the turn counts only where the descent is this much slower
+  double sigmoidMaxDescentDeg = 10.0; // DSJ: ... and descends no steeper than this (degrees
+                                      // below the horizontal; 10 and 20 put every DSJ of the
+                                      // three atlas colons within 40 mm, 90 was the rule before)
   double rectumExitDeg = 45.0;   // turn away from the vertical that ends the rectum
   double minRectumMm = 40.0;     // where the RSJ walk starts when no vertical stretch is found
   double rectumSearchMm = 100.0;  // the RSJ walk starts at the most vertical point this near the anus
