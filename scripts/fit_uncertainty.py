@@ -35,7 +35,8 @@ import statistics
 FEATURES = ["1", "log1p(loo)", "log1p(near/10)", "log1p(corr)", "log K", "1-pathCorrelation", "droppedFraction",
             "1/(1+matchesPer100mm)", "exp(-flex/30)", "1-curvatureAgreement", "lengthMismatch", "curv", "untrusted", "log scale", "log1p(along/10)"]
 SOURCE = {"phantom": "tube"}
-POLYP_WEIGHT = 1.0  # --polyp-weight  # pools whose name starts with "phantom" are one source
+POLYP_WEIGHT = 1.0  # --polyp-weight
+TAU = 0.9  # --tau  # pools whose name starts with "phantom" are one source
 
 
 def features(p, seg):
@@ -140,7 +141,7 @@ def target(p):
     return math.log(max(p["error"], 0.2))
 
 
-def fit(points, bound_model="q90", tau=0.9, iterations=40):
+def fit(points, bound_model="q90", tau=None, iterations=40):
     """The median model: least squares of log(max(error, 0.2 mm)) on wall points and polyps (the
     findings a reader carries). The bound: "q90" = the median times exp(the 90% quantile of the log
     residuals), one factor for every point; "quantile" = a model of its own for the 90% quantile of
@@ -155,6 +156,7 @@ def fit(points, bound_model="q90", tau=0.9, iterations=40):
     c = nonnegative_wls(X, y, pw)
     residuals = [yi - sum(ci * xi for ci, xi in zip(c, xr)) for xr, yi in zip(X, y)]
     model = {"coefficients": c, "q90": quantile(residuals, 0.9), "points": len(points)}
+    tau = TAU if tau is None else tau
     if bound_model == "quantile":
         d = list(c)
         d[0] += model["q90"]
@@ -229,9 +231,13 @@ def main():
                     help="the bound's model: the median's times one factor, or a quantile regression of its own")
     ap.add_argument("--drop", default="", help="inputs left out of the model, comma-separated names of FEATURES")
     ap.add_argument("--polyp-weight", type=float, default=1.0, help="weight of a polyp against a wall point in the fits")
+    ap.add_argument("--tau", type=float, default=0.9,
+                    help="the quantile the bound's regression fits (--bound quantile): above 0.9 where a fit "
+                         "covers fewer than 90%% of the points it was not fitted on")
     a = ap.parse_args()
-    global POLYP_WEIGHT
+    global POLYP_WEIGHT, TAU
     POLYP_WEIGHT = a.polyp_weight
+    TAU = a.tau
     points = load([tuple(s.split("=", 1)) for s in a.pool])
     tests = load([tuple(s.split("=", 1)) for s in a.test])
     for name in filter(None, a.drop.split(",")):
