@@ -55,7 +55,9 @@ struct FlexureOptions {
   double sigmoidSlowing = 0.8;        // DSJ: the turn counts only where the descent is this much slower
   double sigmoidMaxDescentDeg = 10.0; // DSJ: ... and descends no steeper than this (degrees
                                       // below the horizontal; 10 and 20 put every DSJ of the
-                                      // three atlas colons within 40 mm, 90 was the rule before)
+                                      // three atlas colons within 40 mm, 90 was the rule before;
+                                      // it is the tighter of the two wherever the descending
+                                      // colon's median descent is steeper than about 12 degrees)
   double rectumExitDeg = 45.0;   // turn away from the vertical that ends the rectum
   double minRectumMm = 40.0;     // where the RSJ walk starts when no vertical stretch is found
   double rectumSearchMm = 100.0;  // the RSJ walk starts at the most vertical point this near the anus

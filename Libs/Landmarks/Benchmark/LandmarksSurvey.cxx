@@ -6,7 +6,8 @@
 // SEED_DIR: a folder of scripts/registration_seeds.py's cache (surface/{supine,prone}_surface.vtp
 // and phantom/ with {scan}_centerline.mrk.json, {scan}_flexures.mrk.json, {scan}_taeniae.vtp).
 // Per scan: centreline length against the truth's and its mean distance from the true axis; each
-// flexure's offset along the true centreline; per segment A, T, D the fraction of the cut taenia
+// flexure's offset along the true centreline (and the DSJ's from the bottom of the true descent);
+// per segment A, T, D the fraction of the cut taenia
 // within 8 mm (3D) of the true band of the same name, over the true band's extent (points whose
 // nearest true point is an end of the true band lie beyond it: our A segment goes on over the
 // caecal pole), and the true band the found one lies closest to (its name should be the same).
@@ -17,6 +18,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -59,6 +61,18 @@ nlohmann::json Survey(const std::string& dir, const std::string& scan) {
         j["flexureOffsetMm"][Flexures::Names()[k]] =
             analysis::ProjectToMidline(r.flexures.position[k].transpose(), axis, po).arc(0) -
             analysis::ProjectToMidline(p.position.transpose(), axis, po).arc(0);
+  // The DSJ as the atlases place it (Flexures.h): the bottom of the descent, the lowest axis point
+  // between the true SF and RSJ (the phantom's own DSJ lies 60-80 mm above it).
+  std::map<std::string, double> trueArc;
+  for (const ControlPoint& p : flexures.points) trueArc[p.label] = analysis::ProjectToMidline(p.position.transpose(), axis, po).arc(0);
+  if (trueArc.count("SF") && trueArc.count("RSJ")) {
+    const double a = std::min(trueArc["SF"], trueArc["RSJ"]), b = std::max(trueArc["SF"], trueArc["RSJ"]);
+    Eigen::Index bottom = -1;
+    for (Eigen::Index i = 0; i < axis.rows(); ++i)
+      if (arc(i) > a && arc(i) < b && (bottom < 0 || axis(i, 2) < axis(bottom, 2))) bottom = i;
+    if (bottom >= 0)
+      j["dsjFromBottomOfDescentMm"] = analysis::ProjectToMidline(r.flexures.position[2].transpose(), axis, po).arc(0) - arc(bottom);
+  }
   for (const Taenia& t : r.taeniae) {
     if (!t.isCut || t.segment > 2) continue;
     const TriangleMesh& seg = r.segments.segment[t.segment];
@@ -93,6 +107,8 @@ int main(int argc, char** argv) {
                     j["centerlineMm"].get<double>(), j["trueCenterlineMm"].get<double>(),
                     j["meanDistanceFromTrueAxisMm"].get<double>());
         for (const auto& [name, d] : j["flexureOffsetMm"].items()) std::printf(" %s %+.0f", name.c_str(), d.get<double>());
+        if (j.contains("dsjFromBottomOfDescentMm"))
+          std::printf(" (DSJ from the bottom of the descent %+.0f)", j["dsjFromBottomOfDescentMm"].get<double>());
         std::printf("; cut taenia");
         for (const auto& [seg, t] : j["cutTaenia"].items())
           std::printf(" %s %.0f%%%s", seg.c_str(), 100 * t["coverage"].get<double>(),

@@ -13,7 +13,8 @@
 //
 // Measured with issue 19's centreline (the along-colon function's level-set centroids, 5 mm
 // smoothing): HF +38.7 mm, SF -7.5 mm, DSJ +28.5 mm (+23.3 mm since the DSJ's turn counts only
-// where the descent has slowed); centreline 2254 mm, 4.2% shorter than the atlas midline. Before it (1.5 mm, 200K faces; Flexures.h rules on the level-set curve, carried to the centred
+// where the descent has slowed, +12.0 mm since it counts only where the colon descends no steeper
+// than 10 degrees); centreline 2254 mm, 4.2% shorter than the atlas midline. Before it (1.5 mm, 200K faces; Flexures.h rules on the level-set curve, carried to the centred
 // centreline): HF +38.8 mm, SF -5.8 mm, DSJ +29.6 mm (2 mm grid: +34.8, -8.2, +30.8; before
 // centring, 2 mm: +37.6, -10.5, +29.2). 1.5 mm because at 2 mm the handle cuts leave thin
 // fingers that the flattening cannot map (Flattening/Testing/GcaFlatteningTest.cxx).

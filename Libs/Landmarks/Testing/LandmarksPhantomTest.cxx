@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <map>
 
@@ -65,7 +66,8 @@ double BottomOfDescentArc(const ScanGeometry& scan) {
   for (Eigen::Index i = 0; i < truth.points.rows(); ++i)
     if (truth.arcLength(i) > sf && truth.arcLength(i) < rsj && (best < 0 || truth.points(i, 2) < truth.points(best, 2)))
       best = i;
-  return best < 0 ? scan.ArcLength(a.flexureS[2]) : truth.arcLength(best);
+  if (best < 0) ADD_FAILURE() << "no true centreline sample between the true SF and RSJ";
+  return best < 0 ? std::nan("") : truth.arcLength(best);
 }
 
 class LandmarksOnPhantom : public ::testing::TestWithParam<std::pair<int, Posture>> {};
