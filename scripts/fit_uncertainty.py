@@ -35,9 +35,8 @@ import statistics
 
 FEATURES = ["1", "log1p(loo)", "log1p(near/10)", "log1p(corr)", "log K", "1-pathCorrelation", "droppedFraction",
             "1/(1+matchesPer100mm)", "exp(-flex/30)", "1-curvatureAgreement", "lengthMismatch", "curv", "untrusted", "log scale", "log1p(along/10)"]
-SOURCE = {"phantom": "tube"}
+SOURCE = {"phantom": "tube"}  # pools whose name starts with "phantom" are one source
 POLYP_WEIGHT = 1.0  # --polyp-weight
-TAU = 0.9  # --tau  # pools whose name starts with "phantom" are one source
 
 
 def features(p, seg):
@@ -142,7 +141,7 @@ def target(p):
     return math.log(max(p["error"], 0.2))
 
 
-def fit(points, bound_model="q90", tau=None, iterations=40):
+def fit(points, bound_model="q90", tau=0.9, iterations=40):
     """The median model: least squares of log(max(error, 0.2 mm)) on wall points and polyps (the
     findings a reader carries). The bound: "q90" = the median times exp(the 90% quantile of the log
     residuals), one factor for every point; "quantile" = a model of its own for the 90% quantile of
@@ -157,7 +156,6 @@ def fit(points, bound_model="q90", tau=None, iterations=40):
     c = nonnegative_wls(X, y, pw)
     residuals = [yi - sum(ci * xi for ci, xi in zip(c, xr)) for xr, yi in zip(X, y)]
     model = {"coefficients": c, "q90": quantile(residuals, 0.9), "points": len(points)}
-    tau = TAU if tau is None else tau
     if bound_model == "quantile":
         d = list(c)
         d[0] += model["q90"]
@@ -236,9 +234,8 @@ def main():
                     help="the quantile the bound's regression fits (--bound quantile): above 0.9 where a fit "
                          "covers fewer than 90%% of the points it was not fitted on")
     a = ap.parse_args()
-    global POLYP_WEIGHT, TAU
+    global POLYP_WEIGHT
     POLYP_WEIGHT = a.polyp_weight
-    TAU = a.tau
     points = load([tuple(s.split("=", 1)) for s in a.pool])
     tests = load([tuple(s.split("=", 1)) for s in a.test])
     for name in filter(None, a.drop.split(",")):
@@ -250,7 +247,7 @@ def main():
     # Held back by seed parity.
     held = []
     for parity in (1, 0):
-        m = fit([p for p in points if p["seed"] % 2 == parity], a.bound)
+        m = fit([p for p in points if p["seed"] % 2 == parity], a.bound, a.tau)
         held += [held_back(m, p, a.reliable_bound) for p in points if p["seed"] % 2 != parity]
     out["heldBackSeeds"] = report(held)
     # Held back by source.
@@ -259,11 +256,11 @@ def main():
         rest = [p for p in points if p["source"] != s]
         if not rest:
             continue
-        m = fit(rest, a.bound)
+        m = fit(rest, a.bound, a.tau)
         out["heldBackSources"][s] = report([held_back(m, p, a.reliable_bound) for p in points if p["source"] == s])
     # The current model, as the registration wrote it (for comparison).
     out["asWritten"] = report([(p, p["bound"], p["reliable"]) for p in points])
-    final = fit(points, a.bound)
+    final = fit(points, a.bound, a.tau)
     out["final"] = {"coefficients": [round(c, 4) for c in final["coefficients"]], "q90": round(final["q90"], 4),
                     "bound": [round(d, 4) for d in final["bound"]] if "bound" in final else None,
                     "points": final["points"],

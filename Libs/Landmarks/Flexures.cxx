@@ -26,6 +26,14 @@ Eigen::VectorXd BendAngles(const Eigen::MatrixXd& P, int w) {
   return out;
 }
 
+Eigen::Index LowestBetween(const Eigen::MatrixXd& P, const Eigen::VectorXd& arc, double arcFrom, double arcTo) {
+  const double a = std::min(arcFrom, arcTo), b = std::max(arcFrom, arcTo);
+  Eigen::Index best = -1;
+  for (Eigen::Index i = 0; i < P.rows() && i < arc.size(); ++i)
+    if (arc(i) > a && arc(i) < b && (best < 0 || P(i, 2) < P(best, 2))) best = i;
+  return best;
+}
+
 namespace {
 
 int SharpestNear(const Eigen::VectorXd& bend, int i, int r) {

@@ -75,6 +75,11 @@ struct Flexures {
 // samples `w` before and after (clamped at the ends).
 Eigen::VectorXd BendAngles(const Eigen::MatrixXd& P, int w);
 
+// The DSJ as the atlases place it, on a true centreline (for checks against a phantom whose own
+// DSJ follows another convention): the sample of P (n x 3, LPS) with the lowest z among those whose
+// arc lies strictly between arcFrom and arcTo (the true SF and RSJ, either order); -1 if none.
+Eigen::Index LowestBetween(const Eigen::MatrixXd& P, const Eigen::VectorXd& arc, double arcFrom, double arcTo);
+
 // centerline: evenly spaced samples from the anal end to the cecum; arc: their arc length.
 Flexures FindFlexures(const Eigen::MatrixXd& centerline, const Eigen::VectorXd& arc, const FlexureOptions& options = {});
 

@@ -18,7 +18,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -55,23 +54,18 @@ nlohmann::json Survey(const std::string& dir, const std::string& scan) {
   j["centerlineMm"] = r.centerline.Length();
   j["trueCenterlineMm"] = arc(arc.size() - 1);
   j["meanDistanceFromTrueAxisMm"] = analysis::ProjectToMidline(r.centerline.points, axis, po).distance.mean();
+  // Arcs along the true axis: the true flexures' and ours.
+  const auto onAxis = [&](const Eigen::Vector3d& p) { return analysis::ProjectToMidline(p.transpose(), axis, po).arc(0); };
+  std::map<std::string, double> trueArc;
+  for (const ControlPoint& p : flexures.points) trueArc[p.label] = onAxis(p.position);
   for (int k = 0; k < 4; ++k)
-    for (const ControlPoint& p : flexures.points)
-      if (p.label == Flexures::Names()[k])
-        j["flexureOffsetMm"][Flexures::Names()[k]] =
-            analysis::ProjectToMidline(r.flexures.position[k].transpose(), axis, po).arc(0) -
-            analysis::ProjectToMidline(p.position.transpose(), axis, po).arc(0);
+    if (trueArc.count(Flexures::Names()[k]))
+      j["flexureOffsetMm"][Flexures::Names()[k]] = onAxis(r.flexures.position[k]) - trueArc[Flexures::Names()[k]];
   // The DSJ as the atlases place it (Flexures.h): the bottom of the descent, the lowest axis point
   // between the true SF and RSJ (the phantom's own DSJ lies 60-80 mm above it).
-  std::map<std::string, double> trueArc;
-  for (const ControlPoint& p : flexures.points) trueArc[p.label] = analysis::ProjectToMidline(p.position.transpose(), axis, po).arc(0);
   if (trueArc.count("SF") && trueArc.count("RSJ")) {
-    const double a = std::min(trueArc["SF"], trueArc["RSJ"]), b = std::max(trueArc["SF"], trueArc["RSJ"]);
-    Eigen::Index bottom = -1;
-    for (Eigen::Index i = 0; i < axis.rows(); ++i)
-      if (arc(i) > a && arc(i) < b && (bottom < 0 || axis(i, 2) < axis(bottom, 2))) bottom = i;
-    if (bottom >= 0)
-      j["dsjFromBottomOfDescentMm"] = analysis::ProjectToMidline(r.flexures.position[2].transpose(), axis, po).arc(0) - arc(bottom);
+    const Eigen::Index bottom = LowestBetween(axis, arc, trueArc["SF"], trueArc["RSJ"]);
+    if (bottom >= 0) j["dsjFromBottomOfDescentMm"] = onAxis(r.flexures.position[2]) - arc(bottom);
   }
   for (const Taenia& t : r.taeniae) {
     if (!t.isCut || t.segment > 2) continue;

@@ -61,13 +61,26 @@ double TrueArcOf(const ScanGeometry& scan, const Eigen::Vector3d& p) {
 double BottomOfDescentArc(const ScanGeometry& scan) {
   const ColonAnatomy& a = scan.anatomy;
   const CurveSamples truth = CenterlineSamples(scan, 1.0);
-  const double sf = scan.ArcLength(a.flexureS[1]), rsj = scan.ArcLength(a.flexureS[3]);
-  Eigen::Index best = -1;
-  for (Eigen::Index i = 0; i < truth.points.rows(); ++i)
-    if (truth.arcLength(i) > sf && truth.arcLength(i) < rsj && (best < 0 || truth.points(i, 2) < truth.points(best, 2)))
-      best = i;
+  const Eigen::Index best =
+      LowestBetween(truth.points, truth.arcLength, scan.ArcLength(a.flexureS[1]), scan.ArcLength(a.flexureS[3]));
   if (best < 0) ADD_FAILURE() << "no true centreline sample between the true SF and RSJ";
   return best < 0 ? std::nan("") : truth.arcLength(best);
+}
+
+// Known answer: a descent to z = -50 at arc 40, a rise, and a lower point (z = -80) at arc 90,
+// beyond the window; the window's ends in either order; an empty window gives -1.
+TEST(Flexures, LowestBetweenIsTheLowestPointInsideTheWindowOnly) {
+  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(11, 3);
+  Eigen::VectorXd arc(11);
+  const double z[11] = {0, -10, -20, -30, -50, -40, -30, -20, -10, -80, 0};
+  for (int i = 0; i < 11; ++i) {
+    arc(i) = 10.0 * i;
+    P(i, 2) = z[i];
+  }
+  EXPECT_EQ(LowestBetween(P, arc, 5.0, 85.0), 4);
+  EXPECT_EQ(LowestBetween(P, arc, 85.0, 5.0), 4);
+  EXPECT_EQ(LowestBetween(P, arc, 5.0, 95.0), 9);
+  EXPECT_EQ(LowestBetween(P, arc, 41.0, 49.0), -1);
 }
 
 class LandmarksOnPhantom : public ::testing::TestWithParam<std::pair<int, Posture>> {};
