@@ -84,8 +84,16 @@ std::string OutputTransaction::StageDirectory(const std::string& finalPath, cons
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw InputError(what, finalPath, "its parent folder does not exist");
   if (fs::exists(final, ec) && !fs::is_directory(final, ec)) throw InputError(what, finalPath, "exists and is not a folder");
-  const std::string temp = (dir / (".colonmap-tmp-" + tag_ + "-" + std::to_string(counter_++))).string();
-  if (!fs::create_directory(temp, ec)) throw InputError(what, finalPath, "cannot create a temporary folder beside it");
+  // A name left by an earlier run of the same process id is skipped; a real failure (a full disk,
+  // a read-only folder) is said with its reason.
+  std::string temp;
+  for (int attempt = 0;; ++attempt) {
+    temp = (dir / (".colonmap-tmp-" + tag_ + "-" + std::to_string(counter_++))).string();
+    if (fs::create_directory(temp, ec)) break;
+    if (ec || attempt == 100)
+      throw InputError(what, finalPath,
+                       "cannot create a temporary folder beside it (" + (ec ? ec.message() : std::string("name taken")) + ")");
+  }
   temps_.push_back(temp);
   finals_.push_back(finalPath);
   isDirectory_.push_back(true);

@@ -159,6 +159,29 @@ TEST(OutputTransaction, UserNamesReplaceTemporaries) {
   fs::remove_all(dir);
 }
 
+// A temporary folder name already taken (a process of the same id, killed) is skipped; a folder
+// that cannot be made is said with the system's reason (CI once ran out of disk and said none).
+TEST(OutputTransaction, StageDirectorySkipsATakenNameAndSaysWhyItCannotCreate) {
+  const fs::path dir = TempDir("taken");
+  OutputTransaction tx;
+  const std::string file = tx.Stage((dir / "noextension").string(), "f");  // ".colonmap-tmp-TAG-0"
+  const std::string taken = file.substr(0, file.size() - 1) + "1";
+  fs::create_directory(taken);
+  const std::string folder = tx.StageDirectory((dir / "stage").string(), "stage");
+  EXPECT_NE(folder, taken);
+  EXPECT_TRUE(fs::is_directory(folder));
+  tx.Rollback();
+  fs::remove_all(dir);
+  try {
+    tx.StageDirectory("/proc/colonmap-stage", "stage folder");
+    ADD_FAILURE() << "a folder in /proc was staged";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("'/proc/colonmap-stage': cannot create a temporary folder beside it ("), std::string::npos) << m;
+    EXPECT_EQ(m.find("name taken"), std::string::npos) << m;
+  }
+}
+
 TEST(Progress, InProcessStructGetsMonotoneProgressCallbacksAndAbort) {
   ModuleProcessInformation info{};
   struct Log { std::vector<float> values; ModuleProcessInformation* info; } log{{}, &info};
