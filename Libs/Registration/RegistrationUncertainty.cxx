@@ -3,6 +3,7 @@
 #include "Flattening/BeltramiCoefficient.h"
 #include "Registration/FeatureMatching.h"
 #include "Surface/MeanCurvature.h"
+#include "Surface/RingAverage.h"
 
 #include <algorithm>
 #include <cmath>
@@ -169,19 +170,7 @@ VertexUncertainty EstimateUncertainty(const FlatSegment& flat, const Eigen::Matr
   c.curvature = Eigen::VectorXd::Zero(n);
   if (meanCurvature.size() == n) {
     // |H| averaged twice over each vertex and its neighbours (about its 20 nearest vertices).
-    std::vector<std::vector<Eigen::Index>> ring(static_cast<std::size_t>(n));
-    for (Eigen::Index f = 0; f < flat.F.rows(); ++f)
-      for (int j = 0; j < 3; ++j) ring[flat.F(f, j)].push_back(flat.F(f, (j + 1) % 3));
-    Eigen::VectorXd a = meanCurvature.cwiseAbs();
-    for (int pass = 0; pass < 2; ++pass) {
-      Eigen::VectorXd b(n);
-      for (Eigen::Index i = 0; i < n; ++i) {
-        double sum = a(i);
-        for (Eigen::Index j : ring[i]) sum += a(j);
-        b(i) = sum / static_cast<double>(1 + ring[i].size());
-      }
-      a = b;
-    }
+    const Eigen::VectorXd a = surface::RingAverage(flat.F, meanCurvature.cwiseAbs(), 2);
     c.curvature = (10.0 * a).cwiseMin(5.0);
   }
   c.loo.resize(n);
