@@ -30,6 +30,8 @@ import numpy as np
 import vtk
 from vtk.util.numpy_support import vtk_to_numpy
 
+from registration_seeds import markup_points, parse_seeds
+
 
 def read_surface(path):
     reader = vtk.vtkXMLPolyDataReader()
@@ -41,8 +43,7 @@ def read_surface(path):
 
 
 def markup_positions(path):
-    doc = json.load(open(path))
-    return {p["label"]: np.array(p["position"], float) for p in doc["markups"][0]["controlPoints"]}
+    return {label: np.array(position, float) for label, (position, _) in markup_points(path).items()}
 
 
 def closest_points(locator, points):
@@ -140,12 +141,11 @@ def main():
     ap.add_argument("--cache", required=True, help="a registration_seeds.py cache (CACHE/seed<N>)")
     ap.add_argument("--runs", default="runs", help="the registration runs' folder in each seed folder")
     ap.add_argument("--segment", default="S", choices=list("ATDSR"))
-    ap.add_argument("--seeds", default="1-8")
+    ap.add_argument("--seeds", default="1-8", help="e.g. 1-8 or 1,3,5")
     ap.add_argument("--output", default=None)
     a = ap.parse_args()
-    lo, _, hi = a.seeds.partition("-")
     out = {"cache": a.cache, "segment": a.segment, "pairs": {}}
-    for seed in range(int(lo), int(hi or lo) + 1):
+    for seed in parse_seeds(a.seeds):
         folder = os.path.join(a.cache, f"seed{seed}")
         r = one_pair(folder, a.runs, a.segment)
         if r is None:
