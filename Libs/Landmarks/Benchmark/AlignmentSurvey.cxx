@@ -3,7 +3,7 @@
 // phantom's truth. Not a test; the figures go to the issue notes and the README.
 //
 //   AlignmentSurvey [--tangent MM] [--band F] [--penalty P] [--smooth MM] [--detail] [--rule-curves]
-//                   LANDMARKS_SUBDIR SEED_DIR ...
+//                   [--dump] LANDMARKS_SUBDIR SEED_DIR ...
 //
 // SEED_DIR: a folder of scripts/registration_seeds.py's cache: phantom/{scan}_centerline.mrk.json
 // (the true centrelines, point i of both scans the same material point) and
@@ -17,7 +17,8 @@
 // error at the true flexures, and the largest a -> b -> a round trip. --rule-curves aligns the
 // curves the flexure rules run on instead (FindColonAxis on surface/{scan}_surface.vtp), and
 // writes them to LANDMARKS_SUBDIR/{scan}/centerline.mrk.json (folders made beforehand) for later
-// runs without the flag.
+// runs without the flag. --dump writes the alignment (supine arc, matched prone arc, every 1 mm)
+// to SEED_DIR/LANDMARKS_SUBDIR/alignment.tsv, for experiments in other tools.
 #include "Analysis/Interpolate.h"
 #include "Analysis/MidlineProjection.h"
 #include "IO/MarkupsIO.h"
@@ -54,7 +55,8 @@ Eigen::VectorXd MaterialIndex(const Eigen::MatrixXd& P, const Eigen::MatrixXd& a
 int main(int argc, char** argv) {
   CentrelineAlignmentOptions options;
   bool detail = false;
-  bool ruleCurves = false;  // the curves the joint choice aligns: FindColonAxis's RuleCurve() of each surface
+  bool ruleCurves = false;
+  bool dump = false;  // writes SEED_DIR/LANDMARKS_SUBDIR/alignment.tsv: supine arc, matched prone arc, every 1 mm  // the curves the joint choice aligns: FindColonAxis's RuleCurve() of each surface
   std::vector<std::string> args;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -64,10 +66,11 @@ int main(int argc, char** argv) {
     else if (a == "--smooth" && i + 1 < argc) options.smoothMm = std::stod(argv[++i]);
     else if (a == "--detail") detail = true;
     else if (a == "--rule-curves") ruleCurves = true;
+    else if (a == "--dump") dump = true;
     else args.push_back(a);
   }
   if (args.size() < 2) {
-    std::fprintf(stderr, "usage: AlignmentSurvey [--tangent MM] [--band F] [--penalty P] [--smooth MM] [--detail] [--rule-curves] "
+    std::fprintf(stderr, "usage: AlignmentSurvey [--tangent MM] [--band F] [--penalty P] [--smooth MM] [--detail] [--rule-curves] [--dump] "
                          "LANDMARKS_SUBDIR SEED_DIR ...\n");
     return 2;
   }
@@ -96,6 +99,12 @@ int main(int argc, char** argv) {
       const double materialStep = analysis::ArcLength(trueA)(trueA.rows() - 1) / static_cast<double>(trueA.rows() - 1);
       const CentrelineAlignment alignment(ourA, ourB, options);
       const Eigen::VectorXd arcA = analysis::ArcLength(ourA), arcB = analysis::ArcLength(ourB);
+      if (dump) {
+        std::FILE* f = std::fopen((dir + "/" + args[0] + "/alignment.tsv").c_str(), "w");
+        if (!f) throw std::runtime_error("cannot write " + dir + "/" + args[0] + "/alignment.tsv");
+        for (double x = 0; x <= arcA(arcA.size() - 1); x += 1.0) std::fprintf(f, "%.1f\t%.3f\n", x, alignment.AToB(x));
+        std::fclose(f);
+      }
       double roundTrip = 0;
       for (double x = 0; x < arcA(arcA.size() - 1); x += 1.0) roundTrip = std::max(roundTrip, std::abs(alignment.BToA(alignment.AToB(x)) - x));
       std::printf("  round trip a -> b -> a: max %.2f mm\n", roundTrip);
