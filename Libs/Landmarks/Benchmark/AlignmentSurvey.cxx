@@ -55,8 +55,8 @@ Eigen::VectorXd MaterialIndex(const Eigen::MatrixXd& P, const Eigen::MatrixXd& a
 int main(int argc, char** argv) {
   CentrelineAlignmentOptions options;
   bool detail = false;
-  bool ruleCurves = false;
-  bool dump = false;  // writes SEED_DIR/LANDMARKS_SUBDIR/alignment.tsv: supine arc, matched prone arc, every 1 mm  // the curves the joint choice aligns: FindColonAxis's RuleCurve() of each surface
+  bool ruleCurves = false;  // the curves the joint choice aligns: FindColonAxis's RuleCurve() of each surface
+  bool dump = false;        // SEED_DIR/LANDMARKS_SUBDIR/alignment.tsv: supine arc, matched prone arc, every 1 mm
   std::vector<std::string> args;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
