@@ -6,7 +6,7 @@ ground truth and says how it holds on pairs it was not fitted on (issue 20). A b
 
 Each pool is a registration_seeds.py cache (CACHE/seed<N>/RUNS/harmonic/{errors.json,registration.json} or,
 with its --work CACHE/RUNS, CACHE/RUNS/seed<N>/harmonic; RUNS defaults to "runs"), e.g. phantom0.5=/tmp/ph3 gca=/tmp/rc-gca-00020:runs2. The model is
-log sigma = c . x with x = UncertaintyFeatures (the same 15 inputs as the C++), fitted by least squares
+log sigma = c . x with x = UncertaintyFeatures (the same 16 inputs as the C++), fitted by least squares
 of log(max(true error, 0.2 mm)) on the evaluation wall points and polyps (polyps weighted by
 --polyp-weight), coefficients but the intercept kept >= 0. The 90% bound: with --bound q90,
 sigma * exp(q90), q90 the 90% quantile of the fit's log residuals; with --bound quantile (the
@@ -34,7 +34,8 @@ import re
 import statistics
 
 FEATURES = ["1", "log1p(loo)", "log1p(near/10)", "log1p(corr)", "log K", "1-pathCorrelation", "droppedFraction",
-            "1/(1+matchesPer100mm)", "exp(-flex/30)", "1-curvatureAgreement", "lengthMismatch", "curv", "untrusted", "log scale", "log1p(along/10)"]
+            "1/(1+matchesPer100mm)", "exp(-flex/30)", "1-curvatureAgreement", "lengthMismatch", "curv", "untrusted", "log scale", "log1p(along/10)",
+            "log1p(deformation/10)"]
 SOURCE = {"phantom": "tube"}  # pools whose name starts with "phantom" are one source
 POLYP_WEIGHT = 1.0  # --polyp-weight
 
@@ -49,7 +50,8 @@ def features(p, seg):
             seg.get("lengthMismatch", 0.0), min(5.0, max(0.0, p.get("UncertaintyCurvature", 0.0))),
             0.0 if p.get("trusted", p.get("reliable", True)) else 1.0,
             min(3.0, max(-2.0, math.log(max(1e-6, p.get("UncertaintyScale", 1.0))))),
-            math.log1p(max(0.0, p.get("UncertaintyAlongMm", 0.0)) / 10.0)]
+            math.log1p(max(0.0, p.get("UncertaintyAlongMm", 0.0)) / 10.0),
+            math.log1p(max(0.0, seg.get("deformationMm", 0.0)) / 10.0)]
 
 
 def load(pools):

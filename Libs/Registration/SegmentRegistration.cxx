@@ -4,6 +4,7 @@
 #include "Flattening/BeltramiCoefficient.h"
 #include "Registration/FlatLocator.h"
 #include "Registration/FlipRepair.h"
+#include "Registration/RigidResidual.h"
 #include "Registration/SurfaceFlipRepair.h"
 #include "Surface/MeanCurvature.h"
 
@@ -234,6 +235,7 @@ SegmentRegistration RegisterSegment(const SegmentInput& supine, const SegmentInp
   const double supineLength = FlatLengthMm(supine.flat), proneLength = FlatLengthMm(prone.flat);
   evidence.lengthMismatch = supineLength > 0 && proneLength > 0 ? std::abs(std::log(supineLength / proneLength)) : 0.0;
   evidence.flexureAtEnd = supine.flexureAtEnd;
+  evidence.deformationMm = RigidResidualRms(supine.flat.position, r.forward.position);
   const Eigen::MatrixXd h = method == RegistrationMethod::Harmonic && r.correction.h.rows() == supine.flat.uv.rows()
                                 ? Eigen::MatrixXd(r.imageUV - etaUV)
                                 : Eigen::MatrixXd(Eigen::MatrixXd::Zero(supine.flat.uv.rows(), 2));

@@ -189,3 +189,20 @@ TEST(RegistrationUncertainty, AMapThatDisagreesWithTheCentrelineArcWidensTheBoun
   EXPECT_LT(same.uncertainty.components.alongMm.cwiseAbs().maxCoeff(), 1.0);
   EXPECT_LT(same.uncertainty.bound90(middle), r.uncertainty.bound90(middle));
 }
+
+TEST(RegistrationUncertainty, ASegmentThatDeformedHasWiderBounds) {
+  // The same strip, once as a segment that moved rigidly and once as one whose map left 10 mm RMS
+  // beyond its best rigid motion: every bound and median wider by the same factor (a segment
+  // input), the one of the fitted model's coefficient on log(1 + D / 10 mm).
+  const Strip strip;
+  SegmentEvidence rigid, bent;
+  bent.deformationMm = 10.0;
+  const VertexUncertainty a = strip.Estimate(rigid), b = strip.Estimate(bent);
+  const Eigen::ArrayXd ratio = b.bound90.array() / a.bound90.array();
+  EXPECT_GT(ratio.minCoeff(), 1.2);
+  EXPECT_NEAR(ratio.maxCoeff(), ratio.minCoeff(), 1e-9 * ratio.maxCoeff());
+  EXPECT_GT((b.median.array() / a.median.array()).minCoeff(), 1.2);
+  // The feature itself.
+  EXPECT_NEAR(UncertaintyFeatures(PointEvidence{}, bent)(kUncertaintyFeatures - 1), std::log(2.0), 1e-12);
+  EXPECT_EQ(UncertaintyFeatures(PointEvidence{}, rigid)(kUncertaintyFeatures - 1), 0.0);
+}

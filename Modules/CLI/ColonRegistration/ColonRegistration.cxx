@@ -320,7 +320,8 @@ void Run(cli::ModuleContext& ctx) {
                         {"rows", r.warp.rows}};
     j["uncertainty"] = {{"pathCorrelation", U.segment.pathCorrelation}, {"droppedFraction", U.segment.droppedFraction},
                         {"matchesPer100mm", U.segment.matchesPer100mm}, {"curvatureAgreement", U.segment.curvatureAgreement},
-                        {"lengthMismatch", U.segment.lengthMismatch}, {"mmPerFlatUnit", U.mmPerFlatUnit}};
+                        {"lengthMismatch", U.segment.lengthMismatch}, {"deformationMm", U.segment.deformationMm},
+                        {"mmPerFlatUnit", U.mmPerFlatUnit}};
     j["supineVertices"] = s.flat.V.rows();
     j["proneVertices"] = p.flat.V.rows();
     j["supineCut"] = s.input.cutTaenia;

@@ -191,6 +191,8 @@ try:
         seg = hreport["segments"][x]
         check(isinstance(seg.get("trusted"), bool) and seg.get("expectedErrorMm", 0) > 0, f"{x}: trust fields {seg.get('trusted')}")
         check("curvatureAgreement" in seg["uncertainty"] and "lengthMismatch" in seg["uncertainty"], f"{x}: evidence fields")
+        # The pair is deformed, so no segment moved rigidly (RigidResidual.h has the known answers).
+        check(seg["uncertainty"].get("deformationMm", 0) > 0, f"{x}: deformationMm {seg['uncertainty'].get('deformationMm')}")
     check(set(harrays["Reliable"]) <= {0.0, 1.0}, "Reliable is 0/1")
     check(all(r == (t == 1.0 and u <= hreport["reliableBoundMm"]) for r, t, u in
               zip(harrays["Reliable"], harrays["Trusted"], harrays["Uncertainty90"])), "Reliable = Trusted and bound <= reliableBoundMm")
