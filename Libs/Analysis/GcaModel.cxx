@@ -4,6 +4,7 @@
 #include "Core/Error.h"
 #include "IO/MeshIO.h"
 #include "Segmentation/LumenTopology.h"
+#include "Surface/MergeCoincidentPoints.h"
 #include "Surface/MeshTopology.h"
 #include "Surface/SurfaceDistance.h"
 #include "Surface/SurfaceReconstruction.h"
@@ -15,7 +16,6 @@
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
-#include <vtkStaticCleanPolyData.h>
 
 #include <algorithm>
 #include <array>
@@ -274,18 +274,8 @@ GcaWeld WeldGcaColon(const GcaModel& model, double toleranceMm) {
 
   // 2. Merge coincident points: the pieces share their cut loops point for point (within float
   // rounding of the voxel coordinates), so a tiny absolute tolerance welds them and nothing
-  // else. vtkStaticCleanPolyData also turns faces that collapse into lines/points (dropped by
-  // FromPolyData): those are the degenerate faces.
-  vtkNew<vtkPolyData> pd;
-  surface::ToPolyData(all, pd);
-  vtkNew<vtkStaticCleanPolyData> clean;
-  clean->SetInputData(pd);
-  clean->ToleranceIsAbsoluteOn();
-  clean->SetAbsoluteTolerance(toleranceMm);
-  clean->Update();
-  TriangleMesh m = surface::FromPolyData(clean->GetOutput());
-  w.degenerateFaces = static_cast<long>(all.F.rows() - m.F.rows());
-  // Faces with a repeated corner (if any slipped through) are degenerate too.
+  // else. Faces whose corners merged are the degenerate faces.
+  TriangleMesh m = surface::MergeCoincidentPoints(all, toleranceMm);
   {
     std::vector<bool> keep(static_cast<std::size_t>(m.F.rows()), true);
     for (Eigen::Index f = 0; f < m.F.rows(); ++f)

@@ -81,7 +81,7 @@ struct GcaWeld {
 };
 
 // Welds model.colonPieces into one closed colon (see the .cxx for each step and why):
-// pieces appended, coincident points merged (vtkStaticCleanPolyData, absolute tolerance
+// pieces appended, coincident points merged (surface::MergeCoincidentPoints, absolute tolerance
 // toleranceMm: the pieces were cut from one surface, so their boundary points coincide; in
 // the HuBMAP models to within 0.02 mm, in GCA 00020 exactly),
 // degenerate and duplicate faces removed, faces on non-manifold edges removed, non-manifold
