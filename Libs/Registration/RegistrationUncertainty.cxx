@@ -20,9 +20,9 @@ namespace {
 // points (they are about 2% of the points). Written by scripts/fit_uncertainty.py --bound quantile
 // --polyp-weight 25 --tau 0.92 on 42 pairs (refitted 2026-12-06 with the segment deformation
 // input, the VHM pairs remade by the deterministic weld; harmonic method, surfaces from our own
-// CT pipeline): the tube phantom at deformation 0.5 (seeds
-// 1-10) and 1.0 (seeds 1-8), clinical spacing; real-colon pairs of GCA 00020, HuBMAP VHM and VHF
-// (seeds 1-8 each, 1 mm); 8400 wall points and 173 polyps. Inputs at 0 came out so
+// CT pipeline): the tube phantom at deformation 0.5 (seeds 1-10) and 1.0 (seeds 1-8), clinical
+// spacing; real-colon pairs of GCA 00020, HuBMAP VHM and VHF (seeds 1-8 each, 1 mm); 8400 wall
+// points and 173 polyps. Inputs at 0 came out so
 // (RegistrationReliability.h carries those signals). docs/accuracy.md gives the held-back figures.
 constexpr double kC[kUncertaintyFeatures] = {-1.6917, 0.2445, 0.5649, 0.2228, 0.0000, 0.4350, 0.0000, 0.0159, 0.4097, 0.2840, 0.0000, 0.0000, 0.4570, 0.5432, 0.4743, 0.7689};
 constexpr double kB[kUncertaintyFeatures] = {-0.9065, 0.3802, 0.6069, 0.0548, 0.0000, 0.5407, 0.0000, 0.1289, 0.5092, 0.0000, 0.0000, 0.0000, 0.6056, 0.4468, 0.4153, 1.1755};
