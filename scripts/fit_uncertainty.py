@@ -51,7 +51,7 @@ def features(p, seg):
             0.0 if p.get("trusted", p.get("reliable", True)) else 1.0,
             min(3.0, max(-2.0, math.log(max(1e-6, p.get("UncertaintyScale", 1.0))))),
             math.log1p(max(0.0, p.get("UncertaintyAlongMm", 0.0)) / 10.0),
-            math.log1p(max(0.0, seg.get("deformationMm", 0.0)) / 10.0)]
+            math.log1p(max(0.0, seg["deformationMm"]) / 10.0)]
 
 
 def load(pools):
@@ -68,6 +68,12 @@ def load(pools):
             if not os.path.exists(ev):
                 continue
             reg = json.load(open(os.path.join(run, "registration.json")))["segments"]
+            # Every input the model reads must be in the file: a registration written before an
+            # input existed would enter the fit with it at 0 and quietly drop it.
+            old = [x for x, v in reg.items() if "deformationMm" not in v.get("uncertainty", {})]
+            if old:
+                raise SystemExit(f"fit_uncertainty.py: error: '{run}/registration.json' has no deformationMm (segments "
+                                 f"{', '.join(old)}): written by an older ColonRegistration; run it again")
             seed = int(re.search(r"seed(\d+)$", folder).group(1))
             for p in json.load(open(ev))["points"]:
                 seg = reg.get(p.get("mapSegment", p["group"]))

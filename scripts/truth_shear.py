@@ -12,7 +12,8 @@
   error:       the mean true error of the registration there (errors.json).
 
 Then per cache and segment the Pearson correlation over the seeds of the dilatation with our
-error. Where a segment has no folds to match, the registration's map is close to conformal, so a
+error, and over every segment of every pair given, that of log(1 + deformation / 10 mm) with the
+log of our error (the uncertainty model's input, RegistrationUncertainty.h). Where a segment has no folds to match, the registration's map is close to conformal, so a
 true map that shears the wall more is an error the pair gives no means to see (docs/accuracy.md,
 the HuBMAP VHF sigmoid).
 
@@ -89,6 +90,11 @@ def main():
             print(f"{cache} {s}: length {rows[s]['lengthMm']:.0f} mm, true dilatation {min(dil):.2f}-{max(dil):.2f}, "
                   f"our error {min(err):.1f}-{max(err):.1f} mm, r {rows[s]['pearsonDilatationError']}")
         out[cache] = {"segments": rows, "pairs": pairs}
+    segs = [x for c in out.values() for p in c["pairs"].values() for x in p.values() if x["deformationMm"] is not None]
+    if len(segs) >= 3:
+        r = pearson([math.log1p(x["deformationMm"] / 10.0) for x in segs], [math.log(max(x["errorMean"], 0.2)) for x in segs])
+        print(f"all caches: log(1 + deformation / 10 mm) against log error over {len(segs)} segments: r {r:.2f}")
+        out["deformationErrorPearson"] = {"segments": len(segs), "r": r}
     if a.output:
         json.dump(out, open(a.output, "w"), indent=1)
 

@@ -9,13 +9,9 @@
 #include "Surface/SurfaceDistance.h"
 #include "Surface/SurfaceReconstruction.h"
 #include "Surface/InsideMask.h"
-#include "Surface/VtkConversion.h"
 
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
-#include <vtkImageData.h>
-#include <vtkNew.h>
-#include <vtkPolyData.h>
 
 #include <algorithm>
 #include <array>

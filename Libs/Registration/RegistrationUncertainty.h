@@ -28,8 +28,8 @@
 //             RMS of the map's 3D displacement left after the segment's best rigid motion,
 //             RigidResidual.h): the colon's loops move against its fixed parts, and where a
 //             segment bent and sheared more the wall slides in ways its shape does not show
-//             (issue 20: per segment over the 42 pool pairs, log(1 + it / 10 mm) correlated 0.58
-//             with the log of the segment's mean error; refitted with it, pairs with 85-95% of
+//             (issue 20: per segment over the 42 pool pairs, log(1 + it / 10 mm) correlated 0.59
+//             with the log of the segment's mean error, scripts/truth_shear.py; refitted with it, pairs with 85-95% of
 //             their wall points covered rose from 32 to 35 of 42, held back by seed).
 //   scale(x): the flat map's local scale (mm per flat unit: geometric mean of sqrt(3D area / flat
 //             area) over the vertex's faces) over the segment's (MmPerFlatUnit). A flat error

@@ -137,6 +137,8 @@ TEST(ColonSource, TheWeldIsTheSameOnEveryRun) {
   const ColonSource first = ReadColonSource(kData + "hubmap-vhm-00070");
   for (int run = 0; run < 3; ++run) {
     const ColonSource again = ReadColonSource(kData + "hubmap-vhm-00070");
+    ASSERT_EQ(again.surface.V.rows(), first.surface.V.rows()) << "run " << run;
+    ASSERT_EQ(again.surface.F.rows(), first.surface.F.rows()) << "run " << run;
     ASSERT_TRUE(again.surface.V == first.surface.V) << "run " << run;
     ASSERT_TRUE(again.surface.F == first.surface.F) << "run " << run;
   }

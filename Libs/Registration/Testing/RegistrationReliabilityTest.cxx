@@ -193,7 +193,8 @@ TEST(RegistrationUncertainty, AMapThatDisagreesWithTheCentrelineArcWidensTheBoun
 TEST(RegistrationUncertainty, ASegmentThatDeformedHasWiderBounds) {
   // The same strip, once as a segment that moved rigidly and once as one whose map left 10 mm RMS
   // beyond its best rigid motion: every bound and median wider by the same factor (a segment
-  // input), the one of the fitted model's coefficient on log(1 + D / 10 mm).
+  // input), the one of the fitted model's coefficient on log(1 + D / 10 mm) (the bound is the
+  // fitted 90% model wherever it lies above the median, as it does on this strip).
   const Strip strip;
   SegmentEvidence rigid, bent;
   bent.deformationMm = 10.0;

@@ -39,6 +39,8 @@ TEST(MergeCoincidentPoints, MergingDoesNotChainAndCollapsedFacesKeepTheirRepeate
   EXPECT_EQ(w.F.row(1), Eigen::RowVector3i(0, 1, 2));
   // Nothing within the tolerance: the mesh comes back as it was.
   const TriangleMesh same = MergeCoincidentPoints(m, 0.01);
+  ASSERT_EQ(same.V.rows(), m.V.rows());
+  ASSERT_EQ(same.F.rows(), m.F.rows());
   EXPECT_EQ(same.V, m.V);
   EXPECT_EQ(same.F, m.F);
 }
