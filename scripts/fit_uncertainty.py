@@ -33,6 +33,8 @@ import os
 import re
 import statistics
 
+from registration_seeds import harmonic_run
+
 FEATURES = ["1", "log1p(loo)", "log1p(near/10)", "log1p(corr)", "log K", "1-pathCorrelation", "droppedFraction",
             "1/(1+matchesPer100mm)", "exp(-flex/30)", "1-curvatureAgreement", "lengthMismatch", "curv", "untrusted", "log scale", "log1p(along/10)",
             "log1p(deformation/10)"]
@@ -60,13 +62,11 @@ def load(pools):
         cache, _, runs = spec.partition(":")
         runs = runs or "runs"
         for folder in sorted(glob.glob(os.path.join(cache, "seed*"))):
-            # CACHE/seed<N>/RUNS (registration_seeds.py's default) or CACHE/RUNS/seed<N> (its --work RUNS)
-            run = os.path.join(folder, runs, "harmonic")
-            if not os.path.exists(run):
-                run = os.path.join(cache, runs, os.path.basename(folder), "harmonic")
-            ev = os.path.join(run, "errors.json")
-            if not os.path.exists(ev):
+            seed = int(re.search(r"seed(\d+)$", folder).group(1))
+            run = harmonic_run(cache, seed, runs)
+            if run is None:
                 continue
+            ev = os.path.join(run, "errors.json")
             reg = json.load(open(os.path.join(run, "registration.json")))["segments"]
             # Every input the model reads must be in the file: a registration written before an
             # input existed would enter the fit with it at 0 and quietly drop it.
@@ -74,7 +74,6 @@ def load(pools):
             if old:
                 raise SystemExit(f"fit_uncertainty.py: error: '{run}/registration.json' has no deformationMm (segments "
                                  f"{', '.join(old)}): written by an older ColonRegistration; run it again")
-            seed = int(re.search(r"seed(\d+)$", folder).group(1))
             for p in json.load(open(ev))["points"]:
                 seg = reg.get(p.get("mapSegment", p["group"]))
                 if seg is None or "UncertaintyLoo" not in p:

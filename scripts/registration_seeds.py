@@ -149,6 +149,15 @@ def stats(values):
             "p90": round(p90, 3), "max": round(v[-1], 3)}
 
 
+def harmonic_run(cache, seed, runs="runs"):
+    """The harmonic registration folder of a cached pair: CACHE/seed<N>/RUNS/harmonic (the default) or
+    CACHE/RUNS/seed<N>/harmonic (--work CACHE/RUNS); None when neither holds an errors.json."""
+    for f in (os.path.join(cache, f"seed{seed}", runs, "harmonic"), os.path.join(cache, runs, f"seed{seed}", "harmonic")):
+        if os.path.exists(os.path.join(f, "errors.json")):
+            return f
+    return None
+
+
 def markup_points(path):
     doc = json.load(open(path))
     return {p["label"]: (p["position"], p.get("description", "")) for p in doc["markups"][0]["controlPoints"]}

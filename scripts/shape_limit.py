@@ -30,7 +30,7 @@ import numpy as np
 import vtk
 from vtk.util.numpy_support import vtk_to_numpy
 
-from registration_seeds import markup_points, parse_seeds
+from registration_seeds import harmonic_run, markup_points, parse_seeds
 
 
 def read_surface(path):
@@ -77,11 +77,11 @@ def point_array(poly, name):
     return vtk_to_numpy(poly.GetPointData().GetArray(name))
 
 
-def arc_moved(folder, runs, segment, points):
+def arc_moved(run, segment, points):
     """The registration's images of the supine points (nearest supine vertex), moved along the colon
     to the prone vertex of the same u whose arc length the affine arc map gives."""
-    s = read_surface(os.path.join(folder, runs, "harmonic", "registration.vtp"))
-    p = read_surface(os.path.join(folder, runs, "harmonic", "registration_prone.vtp"))
+    s = read_surface(os.path.join(run, "registration.vtp"))
+    p = read_surface(os.path.join(run, "registration_prone.vtp"))
     k = "ATDSR".index(segment)
     s_in, p_in = point_array(s, "SegmentId").astype(int) == k, point_array(p, "SegmentId").astype(int) == k
     s_arc, p_arc = point_array(s, "CenterlineArcLength"), point_array(p, "CenterlineArcLength")
@@ -103,10 +103,10 @@ def arc_moved(folder, runs, segment, points):
     return out
 
 
-def one_pair(folder, runs, segment):
+def one_pair(folder, run, segment):
     supine = read_surface(os.path.join(folder, "flattening", "supine", f"surface_{segment}.vtp"))
     prone = read_surface(os.path.join(folder, "flattening", "prone", f"surface_{segment}.vtp"))
-    errors = json.load(open(os.path.join(folder, runs, "harmonic", "errors.json")))["points"]
+    errors = json.load(open(os.path.join(run, "errors.json")))["points"]
     labels = [p["label"] for p in errors if p["group"] == segment]
     if not labels:
         return None
@@ -129,7 +129,7 @@ def one_pair(folder, runs, segment):
             moved = moved + gaussian_spread(moved, moved[control], d, sigma)
     nonrigid = np.linalg.norm(closest_points(locator, mapped) - truth, axis=1)
     gap = np.linalg.norm(closest_points(locator, moved[control]) - moved[control], axis=1)
-    arc = np.linalg.norm(arc_moved(folder, runs, segment, points) - truth, axis=1)
+    arc = np.linalg.norm(arc_moved(run, segment, points) - truth, axis=1)
     stats = lambda e: {"mean": round(float(e.mean()), 2), "p90": round(float(np.percentile(e, 90)), 2)}
     return {"points": len(labels), "registration": stats(registered),
             "none": stats(np.linalg.norm(points - truth, axis=1)), "rigid": stats(rigid), "nonrigid": stats(nonrigid),
@@ -139,15 +139,15 @@ def one_pair(folder, runs, segment):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--cache", required=True, help="a registration_seeds.py cache (CACHE/seed<N>)")
-    ap.add_argument("--runs", default="runs", help="the registration runs' folder in each seed folder")
+    ap.add_argument("--runs", default="runs", help="the registration runs' folder: CACHE/seed<N>/RUNS or CACHE/RUNS/seed<N>")
     ap.add_argument("--segment", default="S", choices=list("ATDSR"))
     ap.add_argument("--seeds", default="1-8", help="e.g. 1-8 or 1,3,5")
     ap.add_argument("--output", default=None)
     a = ap.parse_args()
     out = {"cache": a.cache, "segment": a.segment, "pairs": {}}
     for seed in parse_seeds(a.seeds):
-        folder = os.path.join(a.cache, f"seed{seed}")
-        r = one_pair(folder, a.runs, a.segment)
+        run = harmonic_run(a.cache, seed, a.runs)
+        r = one_pair(os.path.join(a.cache, f"seed{seed}"), run, a.segment) if run else None
         if r is None:
             continue
         out["pairs"][seed] = r

@@ -24,32 +24,15 @@ import json
 import math
 import os
 
-from registration_seeds import parse_seeds
+from fit_uncertainty import pearson
+from registration_seeds import harmonic_run, parse_seeds
 
 SEGMENTS = "ATDSR"
 
 
-def pearson(a, b):
-    n = len(a)
-    if n < 3:
-        return None
-    ma, mb = sum(a) / n, sum(b) / n
-    sab = sum((x - ma) * (y - mb) for x, y in zip(a, b))
-    sa, sb = math.sqrt(sum((x - ma) ** 2 for x in a)), math.sqrt(sum((y - mb) ** 2 for y in b))
-    return sab / (sa * sb) if sa > 0 and sb > 0 else None
-
-
-def run_folder(cache, seed, runs):
-    """CACHE/seed<N>/RUNS/harmonic, or CACHE/RUNS/seed<N>/harmonic (registration_seeds.py --work)."""
-    for f in (os.path.join(cache, f"seed{seed}", runs, "harmonic"), os.path.join(cache, runs, f"seed{seed}", "harmonic")):
-        if os.path.exists(os.path.join(f, "errors.json")):
-            return f
-    return None
-
-
 def one_pair(cache, seed, runs):
     truth_path = os.path.join(cache, f"seed{seed}", "phantom", "truth.json")
-    run = run_folder(cache, seed, runs)
+    run = harmonic_run(cache, seed, runs)
     if run is None or not os.path.exists(truth_path):
         return None
     truth = json.load(open(truth_path))["segments"]

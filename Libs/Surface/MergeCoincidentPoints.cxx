@@ -1,8 +1,9 @@
 #include "Surface/MergeCoincidentPoints.h"
 
+#include "Surface/VtkConversion.h"
+
 #include <vtkIdList.h>
 #include <vtkNew.h>
-#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkStaticPointLocator.h>
 
@@ -12,12 +13,8 @@ TriangleMesh MergeCoincidentPoints(const TriangleMesh& mesh, double tolerance, s
   const Eigen::Index n = mesh.V.rows();
   std::vector<int> into(static_cast<std::size_t>(n), -1);  // representative (input index) of each point
   if (n > 0) {
-    vtkNew<vtkPoints> points;
-    points->SetDataTypeToDouble();
-    points->SetNumberOfPoints(n);
-    for (Eigen::Index i = 0; i < n; ++i) points->SetPoint(i, mesh.V(i, 0), mesh.V(i, 1), mesh.V(i, 2));
     vtkNew<vtkPolyData> cloud;
-    cloud->SetPoints(points);
+    ToPolyData(mesh, cloud);
     vtkNew<vtkStaticPointLocator> locator;  // its queries are thread-safe and exact; only its merge races
     locator->SetDataSet(cloud);
     locator->BuildLocator();
