@@ -24,6 +24,9 @@ reliable=false (reliable = the registration's own Trusted flag and the held-back
 The final coefficients are fitted on all --pool pairs; paste them into RegistrationUncertainty.cxx.
 --test pools are never fitted on, not even by the final fit: the final model's figures on them are
 the plainest held-back check (e.g. the tube at another deformation and other seeds).
+inSamplePerPool is a ceiling, not a result: each pool fitted on its own pairs and reported on them.
+Pools made by dense_evaluation.py (2000 points per pair) read the same way (NAME=CACHE:dense).
+Needs numpy (Debian: python3-numpy).
 """
 import argparse
 import glob
@@ -32,6 +35,8 @@ import math
 import os
 import re
 import statistics
+
+import numpy as np
 
 from registration_seeds import harmonic_run
 
@@ -86,61 +91,29 @@ def load(pools):
     return points
 
 
-def solve(A, b):
-    """Gaussian elimination with partial pivoting (A n x n)."""
-    n = len(A)
-    M = [row[:] + [b[i]] for i, row in enumerate(A)]
-    for c in range(n):
-        r = max(range(c, n), key=lambda k: abs(M[k][c]))
-        M[c], M[r] = M[r], M[c]
-        if abs(M[c][c]) < 1e-12:
-            M[c][c] = 1e-12
-        for k in range(c + 1, n):
-            f = M[k][c] / M[c][c]
-            for j in range(c, n + 1):
-                M[k][j] -= f * M[c][j]
-    x = [0.0] * n
-    for c in range(n - 1, -1, -1):
-        x[c] = (M[c][n] - sum(M[c][j] * x[j] for j in range(c + 1, n))) / M[c][c]
-    return x
-
-
 def quantile(v, q):
-    v = sorted(v)
-    return v[min(len(v) - 1, max(0, int(math.ceil(q * len(v))) - 1))]
+    v = np.sort(np.asarray(v, dtype=float))
+    return float(v[min(len(v) - 1, max(0, int(math.ceil(q * len(v))) - 1))])
 
 
 def nonnegative_wls(X, y, w, ridge=1e-3):
     """Weighted least squares, every coefficient but the intercept kept >= 0 (each input is built so
     that more of it means less evidence: a signal must never narrow the bound), by dropping the
-    most negative one and refitting."""
-    n = len(X[0])
+    most negative one and refitting. X: points x inputs, y and w per point (numpy arrays)."""
+    n = X.shape[1]
     active = list(range(n))
-    total = sum(w)
+    total = w.sum()
     while True:
-        A = [[0.0] * len(active) for _ in active]
-        b = [0.0] * len(active)
-        for xr, yi, wi in zip(X, y, w):
-            x = [xr[i] for i in active]
-            for i in range(len(active)):
-                wx = wi * x[i]
-                b[i] += wx * yi
-                Ai = A[i]
-                for j in range(i, len(active)):
-                    Ai[j] += wx * x[j]
-        for i in range(len(active)):
-            for j in range(i):
-                A[i][j] = A[j][i]
-        for i in range(1, len(active)):
-            A[i][i] += ridge * total
-        sol = solve(A, b)
-        worst = min(range(1, len(active)), key=lambda i: sol[i], default=None)
-        if worst is None or sol[worst] >= 0.0:
+        Xa = X[:, active]
+        Xw = Xa * w[:, None]
+        A = Xw.T @ Xa
+        A[np.arange(1, len(active)), np.arange(1, len(active))] += ridge * total
+        sol = np.linalg.solve(A, Xw.T @ y)
+        if len(active) == 1 or sol[1:].min() >= 0.0:
             break
-        del active[worst]
-    c = [0.0] * n
-    for i, v in zip(active, sol):
-        c[i] = v
+        del active[1 + int(np.argmin(sol[1:]))]
+    c = np.zeros(n)
+    c[active] = sol
     return c
 
 
@@ -155,22 +128,21 @@ def fit(points, bound_model="q90", tau=0.9, iterations=40):
     the log error (linear quantile regression by iteratively reweighted least squares, the same
     inputs and signs), so that inputs that spread the errors more than they raise their median
     widen the bound more."""
-    X = [p["x"] for p in points]
-    y = [target(p) for p in points]
+    X = np.array([p["x"] for p in points], dtype=float)
+    y = np.array([target(p) for p in points])
     # Polyps are few (about 2% of the points) and sit where the wall bends: weighted up so that
     # the bound holds for them too, not only for the wall around them.
-    pw = [POLYP_WEIGHT if p["polyp"] else 1.0 for p in points]
+    pw = np.array([POLYP_WEIGHT if p["polyp"] else 1.0 for p in points])
     c = nonnegative_wls(X, y, pw)
-    residuals = [yi - sum(ci * xi for ci, xi in zip(c, xr)) for xr, yi in zip(X, y)]
-    model = {"coefficients": c, "q90": quantile(residuals, 0.9), "points": len(points)}
+    model = {"coefficients": c.tolist(), "q90": quantile(y - X @ c, 0.9), "points": len(points)}
     if bound_model == "quantile":
-        d = list(c)
+        d = c.copy()
         d[0] += model["q90"]
         for _ in range(iterations):
-            r = [yi - sum(di * xi for di, xi in zip(d, xr)) for xr, yi in zip(X, y)]
-            w = [wi * (tau if ri > 0 else 1.0 - tau) / max(abs(ri), 0.02) for ri, wi in zip(r, pw)]
+            r = y - X @ d
+            w = pw * np.where(r > 0, tau, 1.0 - tau) / np.maximum(np.abs(r), 0.02)
             d = nonnegative_wls(X, y, w, ridge=1e-4)
-        model["bound"] = d
+        model["bound"] = d.tolist()
     return model
 
 
@@ -265,6 +237,13 @@ def main():
             continue
         m = fit(rest, a.bound, a.tau)
         out["heldBackSources"][s] = report([held_back(m, p, a.reliable_bound) for p in points if p["source"] == s])
+    # A ceiling, not a result: each pool fitted on its own pairs and reported on them (the pairs are
+    # in their own fit). Pairs this leaves outside 85-95% hold errors the inputs cannot tell apart
+    # from their pool's: no fit of these inputs held back from them will place them.
+    out["inSamplePerPool"] = report([held_back(m, p, a.reliable_bound)
+                                     for name in sorted({p["pool"] for p in points})
+                                     for m in [fit([p for p in points if p["pool"] == name], a.bound, a.tau)]
+                                     for p in points if p["pool"] == name])
     # The current model, as the registration wrote it (for comparison).
     out["asWritten"] = report([(p, p["bound"], p["reliable"]) for p in points])
     final = fit(points, a.bound, a.tau)
@@ -277,14 +256,16 @@ def main():
     text = json.dumps(out, indent=1)
     if a.output:
         open(a.output, "w").write(text + "\n")
-    for k in ("heldBackSeeds", "asWritten", "testPairs"):
+    for k in ("heldBackSeeds", "inSamplePerPool", "asWritten", "testPairs"):
         if k not in out:
             continue
         r = out[k]
+        outside = ", ".join(f"{pair} {c}" for pair, c in r["coveragePerPair"].items() if not 0.85 <= c <= 0.95)
         print(f"{k}: pairs in 85-95% {r['pairsWithin85to95']}/{r['pairs']} (min {r['coverageMin']}, max {r['coverageMax']}), "
               f"wall {r['wallCoverage']}, polyps {r['polypCoverage']}, r {r['pearson']}, "
               f">20 mm warned {r['above20mmWarned']}/{r['above20mm']} (unreliable {r['above20mmUnreliable']}, "
-              f"untrusted {r['above20mmUntrusted']}), unreliable {r['unreliableFraction']}, untrusted {r['untrustedFraction']}")
+              f"untrusted {r['above20mmUntrusted']}), unreliable {r['unreliableFraction']}, untrusted {r['untrustedFraction']}"
+              + (f"; outside: {outside}" if outside else ""))
     for s, r in out["heldBackSources"].items():
         print(f"  held-back source {s}: pairs in 85-95% {r['pairsWithin85to95']}/{r['pairs']} (min {r['coverageMin']}, "
               f"max {r['coverageMax']}), wall {r['wallCoverage']}, polyps {r['polypCoverage']}, r {r['pearson']}, "

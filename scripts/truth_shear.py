@@ -18,6 +18,8 @@ true map that shears the wall more is an error the pair gives no means to see (d
 the HuBMAP VHF sigmoid).
 
     python3 scripts/truth_shear.py [--runs runs] [--seeds 1-8] [--output F.json] CACHE ...
+
+Needs numpy (Debian: python3-numpy), as fit_uncertainty.py does.
 """
 import argparse
 import json
