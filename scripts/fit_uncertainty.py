@@ -25,6 +25,8 @@ The final coefficients are fitted on all --pool pairs; paste them into Registrat
 --test pools are never fitted on, not even by the final fit: the final model's figures on them are
 the plainest held-back check (e.g. the tube at another deformation and other seeds).
 inSamplePerPool is a ceiling, not a result: each pool fitted on its own pairs and reported on them.
+heldBackSeeds.unseenSlideFloor: how many pairs would fall outside 85-95% anyway for a bound that is
+calibrated on each pool but cannot see how far each segment slid (unseen_slide_floor).
 Pools made by dense_evaluation.py (2000 points per pair) read the same way (NAME=CACHE:dense).
 Needs numpy (Debian: python3-numpy).
 """
@@ -84,7 +86,7 @@ def load(pools):
                 if seg is None or "UncertaintyLoo" not in p:
                     continue
                 points.append({"pool": name, "source": "tube" if name.startswith("phantom") else name, "seed": seed,
-                               "pair": f"{name}/seed{seed}", "polyp": p["group"] == "polyps", "error": p["error3D"],
+                               "pair": f"{name}/seed{seed}", "group": p["group"], "polyp": p["group"] == "polyps", "error": p["error3D"],
                                "x": features(p, seg["uncertainty"]), "reliable": p.get("reliable", True),
                                "trusted": p.get("trusted", p.get("reliable", True)),
                                "offset": p.get("offset", 0.0), "bound": p["uncertainty"]})
@@ -197,6 +199,43 @@ def report(held):
             "untrustedFraction": round(sum(not p["trusted"] for p, _, _ in wall) / len(wall), 3)}
 
 
+def unseen_slide_floor(held, trials=3000, seed=1):
+    """How many held-back pairs a bound calibrated on each pool would still leave outside 85-95% if
+    it could not see how far each segment slid (a segment's points share most of their error).
+    Per pool: a segment's slide = the median over its wall points of log(error / bound), less the
+    pool's mean; a point's residual = its log(error / bound) less its segment's median. Pairs are
+    re-drawn with their segments' sizes, each segment a random slide of the pool plus random point
+    residuals, the offset set so that the pool covers 90%. held: (point, bound, reliable)."""
+    rng = np.random.default_rng(seed)
+    segments = {}
+    for p, b, _ in held:
+        if not p["polyp"]:
+            segments.setdefault((p["pair"], p["group"]), []).append(math.log(max(p["error"], 0.2) / b))
+    out = {}
+    for pool in sorted({pair.split("/")[0] for pair, _ in segments}):
+        keys = [k for k in segments if k[0].split("/")[0] == pool]
+        medians = np.array([np.median(segments[k]) for k in keys])
+        slides = medians - medians.mean()
+        residuals = np.concatenate([np.array(segments[k]) - m for k, m in zip(keys, medians)])
+        sizes = {}
+        for pair, group in keys:
+            sizes.setdefault(pair, []).append(len(segments[(pair, group)]))
+        draws = slides[rng.integers(len(slides), size=4000)][:, None] + residuals[rng.integers(len(residuals), size=(4000, 25))]
+        offset = float(np.quantile(draws, 0.9))
+        pairs = sorted(sizes)
+        outside = 0
+        for _ in range(trials):
+            n = sizes[pairs[rng.integers(len(pairs))]]
+            covered = sum(np.count_nonzero(slides[rng.integers(len(slides))] + residuals[rng.integers(len(residuals), size=k)]
+                                           <= offset) for k in n)
+            outside += not 0.85 <= covered / sum(n) <= 0.95
+        out[pool] = {"pairs": len(pairs), "slideSd": round(float(slides.std()), 3),
+                     "residualSd": round(float(residuals.std()), 3),
+                     "expectedOutside": round(outside / trials * len(pairs), 2)}
+    out["expectedOutside"] = round(sum(v["expectedOutside"] for v in out.values()), 1)
+    return out
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--pool", action="append", required=True, help="NAME=CACHE[:RUNS]")
@@ -229,6 +268,7 @@ def main():
         m = fit([p for p in points if p["seed"] % 2 == parity], a.bound, a.tau)
         held += [held_back(m, p, a.reliable_bound) for p in points if p["seed"] % 2 != parity]
     out["heldBackSeeds"] = report(held)
+    out["heldBackSeeds"]["unseenSlideFloor"] = unseen_slide_floor(held)
     # Held back by source.
     out["heldBackSources"] = {}
     for s in sorted({p["source"] for p in points}):
@@ -266,6 +306,11 @@ def main():
               f">20 mm warned {r['above20mmWarned']}/{r['above20mm']} (unreliable {r['above20mmUnreliable']}, "
               f"untrusted {r['above20mmUntrusted']}), unreliable {r['unreliableFraction']}, untrusted {r['untrustedFraction']}"
               + (f"; outside: {outside}" if outside else ""))
+    floor = out["heldBackSeeds"]["unseenSlideFloor"]
+    print(f"  pairs outside 85-95% expected of a bound calibrated per pool that cannot see each segment's slide: "
+          f"{floor['expectedOutside']} of {out['heldBackSeeds']['pairs']} (" +
+          ", ".join(f"{k} {v['expectedOutside']} of {v['pairs']}, slide SD {v['slideSd']}" for k, v in floor.items()
+                    if isinstance(v, dict)) + ")")
     for s, r in out["heldBackSources"].items():
         print(f"  held-back source {s}: pairs in 85-95% {r['pairsWithin85to95']}/{r['pairs']} (min {r['coverageMin']}, "
               f"max {r['coverageMax']}), wall {r['wallCoverage']}, polyps {r['polypCoverage']}, r {r['pearson']}, "

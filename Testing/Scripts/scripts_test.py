@@ -53,6 +53,26 @@ check(abs(model["coefficients"][1] - 1.0) < 0.1, f"the median follows its input 
 check(abs(fit_uncertainty.pearson([1, 2, 3, 4], [2, 4, 6, 8.0]) - 1.0) < 1e-12, "pearson of a line is 1")
 check(abs(fit_uncertainty.pearson([1, 2, 3, 4], [8, 6, 4, 2.0]) + 1.0) < 1e-12, "pearson of a falling line is -1")
 
+# The floor of pairs outside 85-95%: none when segments do not slide (1000 points per pair), most
+# when each segment's points share a large slide.
+def held(slide_sd):
+    out = []
+    for pair in range(10):
+        for segment in "ATDS":
+            slide = slide_sd * rng.standard_normal()
+            for _ in range(250):
+                error = math.exp(slide + 0.7 * rng.standard_normal())
+                out.append(({"pair": f"pool/seed{pair}", "group": segment, "polyp": False, "error": error}, 2.5, True))
+    return out
+
+
+still = fit_uncertainty.unseen_slide_floor(held(0.0), trials=300)
+sliding = fit_uncertainty.unseen_slide_floor(held(1.0), trials=300)
+check(still["expectedOutside"] < 0.3, f"no slide, no pair outside ({still['expectedOutside']} of 10)")
+check(sliding["expectedOutside"] > 5, f"large slides put most pairs outside ({sliding['expectedOutside']} of 10)")
+check(abs(sliding["pool"]["slideSd"] - 1.0) < 0.45 and abs(still["pool"]["residualSd"] - 0.7) < 0.05,
+      f"slide and residual spreads measured: {sliding['pool']['slideSd']}, {still['pool']['residualSd']}")
+
 # The dense draw on a tube given in two postures: the prone posture an affine map of the supine,
 # so each point's true partner is that map of it (barycentric coordinates carry over).
 rings, around, radius = 101, 24, 10.0
