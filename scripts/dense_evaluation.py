@@ -5,12 +5,14 @@ ColonPhantom's 200 (issue 20; a benchmark, not a test). A pair's coverage on 200
 
 ColonPhantom's supine_truth.vtp and prone_truth.vtp are one mesh in two postures (same vertices,
 same faces): a point at barycentric coordinates in a face has its true prone position at the same
-coordinates of the same face. Points are drawn as ColonPhantom draws its own: stratified along the
-colon (MaterialS, over the span of the phantom's evaluation points), area-weighted inside a stratum,
-kept 3 mm clear of a polyp's foot (foot radius taken as 0.6 x the diameter its label gives; the
-phantom knows the exact foot). Each point's segment is the one its nearest vertex's SegmentId names,
-read off the phantom's own evaluation points. The registration is the one the cache holds (RUNS);
-ColonEvaluateRegistration gives each point's true error and bound, as for the 200.
+coordinates of the same face. Points are drawn stratified along the colon (MaterialS, over the span
+of the phantom's own evaluation points), area-weighted inside a stratum, kept 3 mm clear of a
+polyp's foot (foot radius taken as 0.6 x the diameter its label gives). ColonPhantom draws its 200
+so on a real colon; on the tube it draws uniformly in (s, angle) on the analytic tube, which the
+tube's even rings make the same to within the mesh. Each point's segment is that of the face's
+vertex nearest it (SegmentId: 0..4 = A, T, D, S, R). The registration is the one the cache holds
+(RUNS); ColonEvaluateRegistration gives each point's true error and bound, as for the 200. Pairs
+with collapsed stretches are refused: the dense points carry no collapsed= tag.
 
     /usr/bin/python3 scripts/dense_evaluation.py --cli-dir DIR --cache CACHE [--runs runs]
         [--seeds 1-8] [--points 2000] [--dense-runs dense]
@@ -23,26 +25,24 @@ import argparse
 import copy
 import json
 import os
-import re
 import shutil
 import sys
 
 import numpy as np
 
-from registration_seeds import harmonic_run, parse_seeds, run
+from registration_seeds import SEGMENTS, harmonic_run, parse_seeds, run
 
 
 def read_wall(path):
-    import vtk  # here, so that sample_wall is usable (and testable) with numpy alone
+    """(vertices, faces, {name: point array}) of a ColonPhantom true wall."""
+    # VTK here, so that sample_wall is usable (and testable) with numpy alone.
+    from shape_limit import read_surface
     from vtk.util.numpy_support import vtk_to_numpy
-    reader = vtk.vtkXMLPolyDataReader()
-    reader.SetFileName(path)
-    reader.Update()
-    poly = reader.GetOutput()
-    if poly.GetNumberOfPoints() == 0:
-        raise SystemExit(f"dense_evaluation.py: error: '{path}' holds no surface")
+    poly = read_surface(path)
     faces = vtk_to_numpy(poly.GetPolys().GetConnectivityArray()).reshape(-1, 3)
-    return poly, vtk_to_numpy(poly.GetPoints().GetData()).astype(float), faces
+    data = poly.GetPointData()
+    arrays = {data.GetArrayName(i): vtk_to_numpy(data.GetArray(i)) for i in range(data.GetNumberOfArrays())}
+    return vtk_to_numpy(poly.GetPoints().GetData()).astype(float), faces, arrays
 
 
 def controls(path):
@@ -60,23 +60,24 @@ def sample_wall(supine, prone, faces, s, letters, span, polyps, count, seed):
     stratum, farther than r from every polyp (centre, r). letters: per vertex its segment's letter
     or None (not evaluated). Returns (supine, prone) lists of (label, description, position)."""
     face_s = s[faces].mean(axis=1)
+    face_lo, face_hi = s[faces].min(axis=1), s[faces].max(axis=1)
     area = 0.5 * np.linalg.norm(np.cross(supine[faces[:, 1]] - supine[faces[:, 0]],
                                          supine[faces[:, 2]] - supine[faces[:, 0]]), axis=1)
     order = np.argsort(face_s, kind="stable")
     sorted_s = face_s[order]
-    cumulative = np.concatenate([[0.0], np.cumsum(area[order])])
     rng = np.random.default_rng(seed)
     length = span[1] - span[0]
     out_supine, out_prone = [], []
     for k in range(count):
         lo, hi = span[0] + (k + 0.1) * length / count, span[0] + (k + 0.9) * length / count
         a, b = np.searchsorted(sorted_s, lo), np.searchsorted(sorted_s, hi, side="right")
-        if b <= a:  # a stratum narrower than the wall's rings (the tube's are 1 mm): the ring at it
-            a = min(a, len(sorted_s) - 1)
-            b = np.searchsorted(sorted_s, sorted_s[a], side="right")
+        candidates = order[a:b]
+        if b <= a:  # a stratum narrower than the wall's rings (the tube's are 1 mm): the faces across it
+            candidates = np.nonzero((face_lo <= hi) & (face_hi >= lo))[0]
+        weights_of = np.cumsum(area[candidates])
         for _ in range(50):
-            pick = cumulative[a] + rng.random() * (cumulative[b] - cumulative[a])
-            face = faces[order[min(max(np.searchsorted(cumulative, pick, side="right") - 1, a), b - 1)]]
+            face = faces[candidates[min(np.searchsorted(weights_of, rng.random() * weights_of[-1], side="right"),
+                                        len(candidates) - 1)]]
             u, w = rng.random(), rng.random()
             if u + w > 1.0:
                 u, w = 1.0 - u, 1.0 - w
@@ -86,7 +87,7 @@ def sample_wall(supine, prone, faces, s, letters, span, polyps, count, seed):
                 break
         else:
             continue
-        letter = letters[face[np.argmax(weights)]]
+        letter = letters[face[np.argmax(weights)]]  # the largest weight: the face's vertex nearest x
         if letter is None:
             continue  # a part of the colon the phantom does not evaluate
         label, text = f"D{k + 1:05d}", f"segment={letter} s={weights @ s[face]:.4f}"
@@ -97,23 +98,21 @@ def sample_wall(supine, prone, faces, s, letters, span, polyps, count, seed):
 
 def sample(phantom, count, seed):
     """(supine, prone) lists of (label, description, position) of count points on a phantom's true walls."""
-    poly, supine, faces = read_wall(os.path.join(phantom, "supine_truth.vtp"))
-    _, prone, prone_faces = read_wall(os.path.join(phantom, "prone_truth.vtp"))
+    if json.load(open(os.path.join(phantom, "truth.json"))).get("collapses"):
+        raise SystemExit(f"dense_evaluation.py: error: '{phantom}' has collapsed stretches, which the dense points do not mark")
+    supine, faces, arrays = read_wall(os.path.join(phantom, "supine_truth.vtp"))
+    prone, prone_faces, _ = read_wall(os.path.join(phantom, "prone_truth.vtp"))
     if supine.shape != prone.shape or not np.array_equal(faces, prone_faces):
         raise SystemExit(f"dense_evaluation.py: error: '{phantom}': the supine and prone true walls are not one mesh")
-    from vtk.util.numpy_support import vtk_to_numpy
-    s = vtk_to_numpy(poly.GetPointData().GetArray("MaterialS")).astype(float)
-    segment_id = vtk_to_numpy(poly.GetPointData().GetArray("SegmentId"))
-    # Which SegmentId is which letter, and the span of s, from the phantom's own evaluation points.
-    letter, span = {}, [np.inf, -np.inf]
-    for p in controls(os.path.join(phantom, "supine_eval.mrk.json"))[1]:
-        nearest = int(np.argmin(np.linalg.norm(supine - np.asarray(p["position"]), axis=1)))
-        d = describe(p)
-        letter.setdefault(int(segment_id[nearest]), d["segment"])
-        span = [min(span[0], float(d["s"])), max(span[1], float(d["s"]))]
+    # The span of s, and which segments are evaluated, from the phantom's own evaluation points.
+    own = [describe(p) for p in controls(os.path.join(phantom, "supine_eval.mrk.json"))[1]]
+    span = (min(float(d["s"]) for d in own), max(float(d["s"]) for d in own))
+    evaluated = {d["segment"] for d in own}
+    letters = [SEGMENTS[i] if 0 <= i < len(SEGMENTS) and SEGMENTS[i] in evaluated else None
+               for i in arrays["SegmentId"].astype(int)]
     polyps = [(np.asarray(p["position"]), 0.6 * float(describe(p).get("diameter", 10.0)) + 3.0)
               for p in controls(os.path.join(phantom, "supine_polyps.mrk.json"))[1]]
-    return sample_wall(supine, prone, faces, s, [letter.get(int(i)) for i in segment_id], span, polyps, count, seed)
+    return sample_wall(supine, prone, faces, arrays["MaterialS"].astype(float), letters, span, polyps, count, seed)
 
 
 def write_points(template, points, path):
@@ -134,6 +133,9 @@ def main():
     ap.add_argument("--points", type=int, default=2000)
     ap.add_argument("--dense-runs", default="dense", help="output: CACHE/DENSE-RUNS/seed<N>/harmonic")
     a = ap.parse_args()
+    if not os.path.isdir(a.cache):
+        raise SystemExit(f"dense_evaluation.py: error: cache '{a.cache}' is not a folder")
+    evaluated = 0
     for seed in parse_seeds(a.seeds):
         phantom = os.path.join(a.cache, f"seed{seed}", "phantom")
         registration = harmonic_run(a.cache, seed, a.runs)
@@ -158,8 +160,12 @@ def main():
         errors = json.load(open(os.path.join(out, "errors.json")))
         wall = [p for p in errors["points"] if p["group"] != "polyps"]
         covered = sum(p["error3D"] <= p["uncertainty"] for p in wall) / max(1, len(wall))
+        evaluated += 1
         print(f"seed {seed}: {len(wall)} points, mean error {np.mean([p['error3D'] for p in wall]):.2f} mm, "
               f"within their bound {covered:.3f}", flush=True)
+    if not evaluated:
+        raise SystemExit(f"dense_evaluation.py: error: no pair of '{a.cache}' (seeds {a.seeds}) has a registration "
+                         f"under '{a.runs}' and true walls")
 
 
 if __name__ == "__main__":

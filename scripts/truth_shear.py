@@ -18,16 +18,13 @@ true map that shears the wall more is an error the pair gives no means to see (d
 the HuBMAP VHF sigmoid).
 
     python3 scripts/truth_shear.py [--runs runs] [--seeds 1-8] [--output F.json] CACHE ...
-
-Needs numpy (Debian: python3-numpy), as fit_uncertainty.py does.
 """
 import argparse
 import json
 import math
 import os
 
-from fit_uncertainty import pearson
-from registration_seeds import harmonic_run, parse_seeds
+from registration_seeds import harmonic_run, parse_seeds, pearson
 
 SEGMENTS = "ATDSR"
 
@@ -76,8 +73,7 @@ def main():
                   f"our error {min(err):.1f}-{max(err):.1f} mm, r {rows[s]['pearsonDilatationError']}")
         out[cache] = {"segments": rows, "pairs": pairs}
     segs = [x for c in out.values() for p in c["pairs"].values() for x in p.values() if x["deformationMm"] is not None]
-    if len(segs) >= 3:
-        r = pearson([math.log1p(x["deformationMm"] / 10.0) for x in segs], [math.log(max(x["errorMean"], 0.2)) for x in segs])
+    if len(segs) >= 3 and (r := pearson([math.log1p(x["deformationMm"] / 10.0) for x in segs], [math.log(max(x["errorMean"], 0.2)) for x in segs])) is not None:
         print(f"all caches: log(1 + deformation / 10 mm) against log error over {len(segs)} segments: r {r:.2f}")
         out["deformationErrorPearson"] = {"segments": len(segs), "r": r}
     if a.output:
