@@ -22,7 +22,6 @@ registration.json, the layout fit_uncertainty.py reads (--pool NAME=CACHE:DENSE-
 Needs numpy and VTK's Python module (Debian: python3-numpy, python3-vtk9).
 """
 import argparse
-import copy
 import json
 import os
 import shutil
@@ -30,7 +29,7 @@ import sys
 
 import numpy as np
 
-from registration_seeds import SEGMENTS, harmonic_run, parse_seeds, run
+from registration_seeds import SEGMENTS, harmonic_run, markup_points, parse_seeds, run
 
 
 def read_wall(path):
@@ -45,13 +44,9 @@ def read_wall(path):
     return vtk_to_numpy(poly.GetPoints().GetData()).astype(float), faces, arrays
 
 
-def controls(path):
-    doc = json.load(open(path))
-    return doc, doc["markups"][0]["controlPoints"]
-
-
-def describe(point):
-    return dict(kv.split("=", 1) for kv in point["description"].split() if "=" in kv)
+def describe(text):
+    """The key=value fields of a ColonPhantom markup description."""
+    return dict(kv.split("=", 1) for kv in text.split() if "=" in kv)
 
 
 def sample_wall(supine, prone, faces, s, letters, span, polyps, count, seed):
@@ -105,18 +100,19 @@ def sample(phantom, count, seed):
     if supine.shape != prone.shape or not np.array_equal(faces, prone_faces):
         raise SystemExit(f"dense_evaluation.py: error: '{phantom}': the supine and prone true walls are not one mesh")
     # The span of s, and which segments are evaluated, from the phantom's own evaluation points.
-    own = [describe(p) for p in controls(os.path.join(phantom, "supine_eval.mrk.json"))[1]]
+    own = [describe(text) for _, text in markup_points(os.path.join(phantom, "supine_eval.mrk.json")).values()]
     span = (min(float(d["s"]) for d in own), max(float(d["s"]) for d in own))
     evaluated = {d["segment"] for d in own}
     letters = [SEGMENTS[i] if 0 <= i < len(SEGMENTS) and SEGMENTS[i] in evaluated else None
                for i in arrays["SegmentId"].astype(int)]
-    polyps = [(np.asarray(p["position"]), 0.6 * float(describe(p).get("diameter", 10.0)) + 3.0)
-              for p in controls(os.path.join(phantom, "supine_polyps.mrk.json"))[1]]
+    polyps = [(np.asarray(x), 0.6 * float(describe(text).get("diameter", 10.0)) + 3.0)
+              for x, text in markup_points(os.path.join(phantom, "supine_polyps.mrk.json")).values()]
     return sample_wall(supine, prone, faces, arrays["MaterialS"].astype(float), letters, span, polyps, count, seed)
 
 
 def write_points(template, points, path):
-    doc = copy.deepcopy(template)
+    """points as a markups file shaped like the file template (its first control point's fields)."""
+    doc = json.load(open(template))
     first = doc["markups"][0]["controlPoints"][0]
     doc["markups"][0]["controlPoints"] = [dict(first, id=str(i + 1), label=label, description=text,
                                                position=[float(c) for c in x])
@@ -145,10 +141,9 @@ def main():
         out = os.path.join(a.cache, a.dense_runs, f"seed{seed}", "harmonic")
         os.makedirs(out, exist_ok=True)
         supine, prone = sample(phantom, a.points, seed)
-        write_points(controls(os.path.join(phantom, "supine_eval.mrk.json"))[0], supine,
-                     os.path.join(out, "supine_dense.mrk.json"))
-        write_points(controls(os.path.join(phantom, "prone_eval.mrk.json"))[0], prone,
-                     os.path.join(out, "prone_dense.mrk.json"))
+        for posture, points in (("supine", supine), ("prone", prone)):
+            write_points(os.path.join(phantom, f"{posture}_eval.mrk.json"), points,
+                         os.path.join(out, f"{posture}_dense.mrk.json"))
         shutil.copy(os.path.join(registration, "registration.json"), out)
         run(a.cli_dir, "ColonEvaluateRegistration",
             ["--registration", os.path.join(registration, "registration.vtp"),

@@ -201,20 +201,20 @@ def slide_blind_misses(held, trials=1000, seed=1):
     the pool plus random point residuals, the offset set so that the pool covers 90%.
     held: (point, bound, reliable). Returns per pool and in all the expected count and its SD."""
     rng = np.random.default_rng(seed)
-    segments = {}
+    segments = {}  # (pool, pair, segment) -> log(error / bound) of its wall points
     for p, b, _ in held:
         if not p["polyp"]:
-            segments.setdefault((p["pair"], p["group"]), []).append(math.log(max(p["error"], 0.2) / b))
+            segments.setdefault((p["pool"], p["pair"], p["group"]), []).append(math.log(max(p["error"], 0.2) / b))
     pools, outside = {}, np.zeros(trials)
-    for pool in sorted({pair.split("/")[0] for pair, _ in segments}):
-        keys = [k for k in segments if k[0].split("/")[0] == pool]
+    for pool in sorted({k[0] for k in segments}):
+        keys = [k for k in segments if k[0] == pool]
         medians = np.array([np.median(segments[k]) for k in keys])
         residuals = np.concatenate([np.array(segments[k]) - m for k, m in zip(keys, medians)])
         sampling = math.pi / 2 * residuals.var() * np.mean([1.0 / len(segments[k]) for k in keys])
         slides = (medians - medians.mean()) * math.sqrt(max(0.0, 1.0 - sampling / max(medians.var(), 1e-12)))
-        sizes = {}
-        for pair, group in keys:
-            sizes.setdefault(pair, []).append(len(segments[(pair, group)]))
+        sizes = {}  # pair -> its segments' point counts
+        for k in keys:
+            sizes.setdefault(k[1], []).append(len(segments[k]))
         pairs = sorted(sizes)
         # The offset: the 90% quantile of slide + residual (4000 x 25 draws: +-0.01 on the quantile).
         offset = float(np.quantile(slides[rng.integers(len(slides), size=4000)][:, None] +

@@ -24,9 +24,7 @@ import json
 import math
 import os
 
-from registration_seeds import harmonic_run, parse_seeds, pearson
-
-SEGMENTS = "ATDSR"
+from registration_seeds import SEGMENTS, harmonic_run, parse_seeds, pearson
 
 
 def one_pair(cache, seed, runs):

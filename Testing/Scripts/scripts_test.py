@@ -70,7 +70,7 @@ def held(slide_sd, size=2000, pairs=40):
     out = []
     for pair in range(pairs):
         slide = slide_sd * rng.standard_normal()
-        out += [({"pair": f"pool/seed{pair}", "group": "A", "polyp": False, "error": math.exp(slide + 0.7 * z)}, 1.0, True)
+        out += [({"pool": "pool", "pair": f"pool/seed{pair}", "group": "A", "polyp": False, "error": math.exp(slide + 0.7 * z)}, 1.0, True)
                 for z in rng.standard_normal(size)]
     return out
 
@@ -110,7 +110,7 @@ count = 2000
 sup, pro = dense_evaluation.sample_wall(supine, prone, faces, s, letters, (0.0, 100.0), [polyp], count, seed=5)
 positions = np.array([x for _, _, x in sup])
 partners = np.array([x for _, _, x in pro])
-fields = [dense_evaluation.describe({"description": d}) for _, d, _ in sup]
+fields = [dense_evaluation.describe(d) for _, d, _ in sup]
 drawn_s = np.array([float(f["s"]) for f in fields])
 segments = [f["segment"] for f in fields]
 check(np.abs(positions @ A.T + t - partners).max() < 1e-9, "every prone point is the true partner of its supine point")
@@ -120,7 +120,7 @@ index = np.array([int(label[1:]) - 1 for label, _, _ in sup])
 width = 100.0 / count  # 0.05 mm, narrower than a ring: a point lies on a face across its stratum
 check(np.all(np.abs(drawn_s - (index + 0.5) * width) <= 1.0 + 0.5 * width), "each point on a face across its stratum")
 coarse = dense_evaluation.sample_wall(supine, prone, faces, s, letters, (0.0, 100.0), [polyp], 40, seed=5)[0]
-coarse_s = np.array([float(dense_evaluation.describe({"description": d})["s"]) for _, d, _ in coarse])
+coarse_s = np.array([float(dense_evaluation.describe(d)["s"]) for _, d, _ in coarse])
 coarse_index = np.array([int(label[1:]) - 1 for label, _, _ in coarse])
 check(np.all((coarse_s >= (coarse_index + 0.1) * 2.5 - 1.0) & (coarse_s <= (coarse_index + 0.9) * 2.5 + 1.0)),
       "strata wider than a ring: each point from the faces whose centres lie in the middle 80% of its stratum")
